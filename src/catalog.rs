@@ -1,0 +1,169 @@
+//! The list of scenes and the glue that runs one: compute (in [`crate::scenes`]), pick the
+//! key numbers, render (in [`crate::render`]). Running one scene runs nothing else.
+
+use crate::error::ParameterError;
+use crate::render::{self, RenderError};
+use crate::report::KeyNumbers;
+use crate::scenes;
+use std::path::Path;
+
+/// How much work a scene does: the book's full resolution, or a reduced one for tests.
+/// Scenes whose full resolution is already cheap ignore it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Resolution {
+    /// As in the book.
+    Book,
+    /// Reduced, for the test suite.
+    Test,
+}
+
+/// What a scene run produces.
+#[derive(Debug, Clone)]
+pub struct SceneOutput {
+    /// Rounded key numbers (for `--json`, snapshots and the README).
+    pub key_numbers: KeyNumbers,
+    /// All computed data.
+    pub data: serde_json::Value,
+    /// A markdown table.
+    pub table: String,
+    /// An SVG plot.
+    pub svg: String,
+}
+
+/// A scene failure.
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    /// Bad parameters.
+    #[error(transparent)]
+    Parameter(#[from] ParameterError),
+    /// Drawing failed.
+    #[error(transparent)]
+    Render(#[from] RenderError),
+    /// Writing files failed.
+    #[error("could not write {path}: {source}")]
+    Io {
+        /// The file.
+        path: String,
+        /// The cause.
+        source: std::io::Error,
+    },
+}
+
+/// One entry of the catalogue.
+pub struct SceneSpec {
+    /// The name used on the command line.
+    pub name: &'static str,
+    /// Where in the paper.
+    pub paper: &'static str,
+    /// What it shows.
+    pub summary: &'static str,
+    /// Runs it.
+    pub run: fn(Resolution) -> Result<SceneOutput, SceneError>,
+}
+
+/// Every scene, in the book's order.
+pub fn all() -> &'static [SceneSpec] {
+    &[
+        SceneSpec {
+            name: "spectrum",
+            paper: "§2.1, eqs (3)-(4)",
+            summary: "continuum roots beta_i (free, clamped-pinned, finite k) vs golden; k2/k1; small-k law",
+            run: run_spectrum,
+        },
+        SceneSpec {
+            name: "fig2",
+            paper: "Fig 2, §2.3",
+            summary: "eigenvalues of K+ for N = 1, 3, 10 vs exact (beta_i+)^4; lambda_N/(kN)",
+            run: run_fig2,
+        },
+    ]
+}
+
+/// Looks a scene up by name.
+pub fn find(name: &str) -> Result<&'static SceneSpec, ParameterError> {
+    all().iter().find(|s| s.name == name).ok_or_else(|| {
+        let names: Vec<&str> = all().iter().map(|s| s.name).collect();
+        ParameterError::new("scene NAME", name, &format!("one of {}", names.join(", ")))
+    })
+}
+
+fn to_json<T: serde::Serialize>(data: &T) -> serde_json::Value {
+    serde_json::to_value(data).expect("scene data serialises")
+}
+
+fn run_spectrum(_: Resolution) -> Result<SceneOutput, SceneError> {
+    let d = scenes::spectrum::compute(&Default::default())?;
+    let mut k = KeyNumbers::default();
+    // Roots are resolved to ~1e-15 relative; 13 figures leave margin for libm differences.
+    for c in d.free.iter().filter(|c| c.i <= 5) {
+        k.float(format!("beta_free_{}", c.i), c.ours, 13);
+    }
+    for c in d.clamped_pinned.iter().filter(|c| c.i <= 5) {
+        k.float(format!("beta_pinned_{}", c.i), c.ours, 13);
+    }
+    k.float("k1", d.k1, 12);
+    k.float("k2_over_k1", d.k2_over_k1, 10);
+    // The fitted order is a regression over 7 points; 3 figures are stable.
+    k.float("small_k_fitted_order", d.small_k.fitted_order, 3);
+    k.float("small_k_coefficient", d.small_k.fitted_coefficient, 4);
+    k.float("small_k_coefficient_theory", d.small_k.predicted_coefficient, 4);
+    Ok(SceneOutput {
+        key_numbers: k,
+        table: render::spectrum::table(&d),
+        svg: render::spectrum::plot(&d)?,
+        data: to_json(&d),
+    })
+}
+
+fn run_fig2(_: Resolution) -> Result<SceneOutput, SceneError> {
+    let d = scenes::fig2::compute(&Default::default())?;
+    let mut k = KeyNumbers::default();
+    for r in &d.table {
+        let key = format!("N={} k/k1={} i={}", r.modes, r.k_over_k1, r.i);
+        // λ from the secular equation and (β⁺)⁴ are both good to ~1e-14 relative.
+        k.float(format!("{key} lambda"), r.lambda, 10);
+        k.float(format!("{key} exact"), r.exact, 10);
+        // The difference of two such numbers: its absolute accuracy is ~1e-13, so it is
+        // shown to 3 figures, and as round-off when below 1e-11.
+        if r.rel_error.abs() < 1e-11 {
+            k.text(format!("{key} rel_error"), "below 1e-11");
+        } else {
+            k.float(format!("{key} rel_error"), r.rel_error, 3);
+        }
+        if let Some(s) = r.scaled_highest {
+            k.float(format!("{key} lambda_N/(kN)"), s, 8);
+        }
+    }
+    Ok(SceneOutput {
+        key_numbers: k,
+        table: render::fig2::table(&d),
+        svg: render::fig2::plot(&d)?,
+        data: to_json(&d),
+    })
+}
+
+/// Writes `plot.svg`, `table.md`, `data.json` and `key_numbers.json` into `dir`.
+pub fn write(out: &SceneOutput, dir: &Path) -> Result<(), SceneError> {
+    let io = |path: &Path| {
+        let path = path.display().to_string();
+        move |source| SceneError::Io { path, source }
+    };
+    std::fs::create_dir_all(dir).map_err(io(dir))?;
+    let files = [
+        ("plot.svg", out.svg.clone()),
+        ("table.md", out.table.clone()),
+        (
+            "data.json",
+            serde_json::to_string_pretty(&out.data).expect("json"),
+        ),
+        (
+            "key_numbers.json",
+            serde_json::to_string_pretty(&out.key_numbers.to_json()).expect("json"),
+        ),
+    ];
+    for (name, text) in files {
+        let p = dir.join(name);
+        std::fs::write(&p, text).map_err(io(&p))?;
+    }
+    Ok(())
+}

@@ -1,0 +1,86 @@
+//! Typed errors for bad input. Every message is one line that names the parameter, what
+//! was given and what is allowed, so the CLI can print it verbatim.
+
+use thiserror::Error;
+
+/// A parameter outside its allowed range.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[error("invalid {name}: got {value}; allowed: {allowed}")]
+pub struct ParameterError {
+    /// The parameter, in the paper's vocabulary (or a CLI flag).
+    pub name: String,
+    /// What was given, as text.
+    pub value: String,
+    /// What is allowed.
+    pub allowed: String,
+}
+
+impl ParameterError {
+    /// Builds the error for `name`, given `value`, allowed `allowed`.
+    pub fn new(name: &str, value: impl std::fmt::Display, allowed: &str) -> Self {
+        Self {
+            name: name.to_string(),
+            value: value.to_string(),
+            allowed: allowed.to_string(),
+        }
+    }
+}
+
+/// `value` must be finite and ≥ 0.
+pub fn finite_non_negative(name: &str, value: f64) -> Result<f64, ParameterError> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(ParameterError::new(name, value, "a finite number ≥ 0"))
+    }
+}
+
+/// `value` must be finite and > 0.
+pub fn finite_positive(name: &str, value: f64) -> Result<f64, ParameterError> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(ParameterError::new(name, value, "a finite number > 0"))
+    }
+}
+
+/// `value` must be finite (any sign).
+pub fn finite(name: &str, value: f64) -> Result<f64, ParameterError> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(ParameterError::new(name, value, "a finite number"))
+    }
+}
+
+/// `value` must lie in `1..=max`.
+pub fn count_in_range(name: &str, value: usize, max: usize) -> Result<usize, ParameterError> {
+    if (1..=max).contains(&value) {
+        Ok(value)
+    } else {
+        Err(ParameterError::new(
+            name,
+            value,
+            &format!("an integer from 1 to {max}"),
+        ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn messages_name_parameter_value_and_range() {
+        let e = finite_non_negative("stop stiffness k", f64::NAN).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "invalid stop stiffness k: got NaN; allowed: a finite number ≥ 0"
+        );
+        let e = count_in_range("modes N", 0, 400).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "invalid modes N: got 0; allowed: an integer from 1 to 400"
+        );
+    }
+}

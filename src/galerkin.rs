@@ -1,0 +1,379 @@
+//! The N-mode Galerkin compliant (bilinear) model: §2.2 eqs (5)–(9) and §5.1 eqs (31)–(35).
+//!
+//! The beam deflection is expanded in the free cantilever modes, w = Σ φ_i(s) η_i(t), with
+//! ∫φ_iφ_j = δ_ij and φ_i(1) = 2 ([`crate::continuum::free_mode`]). Then
+//!
+//! ```text
+//! η̈ + [C] η̇ + [K^±] η = F^±(t),                                   (34)
+//! K⁻ = diag(k_j),  K⁺ = K⁻ + (k/4) φ(1)φ(1)ᵀ = K⁻ + k·11ᵀ,           (9)
+//! C = diag(2α + γ k_j),                                            (34)
+//! F⁺ = F⁻ + (k d₀/4) φ(1),   F⁻_j(t) = ∫ φ_j f(s) ds · cos ωt,      (8)–(9)
+//! ```
+//!
+//! with k_j = (β_j^-)⁴, switching surface φ(1)ᵀη = d₀, and state-space form (35),
+//! x = [η; η̇], A^± = [[0, I], [−K^±, −C]].
+//!
+//! Deviations from the printed paper (each in the book's errata):
+//! - Damping ratio: C₁₁ = γk₁ = 2ζ₁(β₁⁻)², so γ = 2ζ₁/(β₁⁻)² (the Fig 9 caption's reading;
+//!   §5.2 prints ζ₁ = γ(β₁⁻)⁻²/2).
+//! - Forcing amplitude, eq (37): the printed k₁ψ₁(s)/(2ζ₁ψ₁(1)) gives an unconstrained tip
+//!   amplitude 1/(4ζ₁²), not the unit amplitude the text asks for.
+//!   [`SpatialProfile::UnitTipAtResonance`] is the profile a·φ₁(s) with a = C₁₁(β₁⁻)²/2,
+//!   which gives exactly 1 (a = ζ₁k₁ for α = 0); [`SpatialProfile::PaperEq37AsPrinted`]
+//!   keeps the printed amplitude for comparison.
+
+use crate::continuum;
+use crate::error::{self, ParameterError};
+use crate::numerics::{Quadrature, brent};
+use nalgebra::{DMatrix, DVector};
+use std::fmt;
+use std::sync::Arc;
+
+/// Largest number of modes N accepted.
+pub const MAX_MODES: usize = 400;
+
+/// Which side of the switching surface φ(1)ᵀη = d₀ the beam is on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
+pub enum Region {
+    /// The − region, φ(1)ᵀη < d₀: free flight.
+    Free,
+    /// The + region, φ(1)ᵀη ≥ d₀: in contact with the stop.
+    Contact,
+}
+
+/// The spatial profile f(s) of harmonic forcing f(s) cos ωt.
+#[derive(Clone)]
+pub enum SpatialProfile {
+    /// eq (37) with the amplitude the text intends: f(s) = a φ₁(s), a = C₁₁(β₁⁻)²/2, so
+    /// that the unconstrained tip amplitude is 1 at ω = (β₁⁻)².
+    UnitTipAtResonance,
+    /// eq (37) as printed: f(s) = k₁ψ₁(s)/(2ζ₁ψ₁(1)) = k₁φ₁(s)/(4ζ₁), with ζ₁ = C₁₁/(2(β₁⁻)²).
+    PaperEq37AsPrinted,
+    /// Modal amplitudes f_j given directly (missing entries are zero).
+    Modal(Vec<f64>),
+    /// Any profile f(s) on [0, 1], projected onto φ_j by quadrature.
+    Function(Arc<dyn Fn(f64) -> f64 + Send + Sync>),
+}
+
+impl fmt::Debug for SpatialProfile {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::UnitTipAtResonance => write!(f, "UnitTipAtResonance"),
+            Self::PaperEq37AsPrinted => write!(f, "PaperEq37AsPrinted"),
+            Self::Modal(v) => write!(f, "Modal({v:?})"),
+            Self::Function(_) => write!(f, "Function(..)"),
+        }
+    }
+}
+
+/// Harmonic forcing f(s) cos ωt.
+#[derive(Debug, Clone)]
+pub struct Forcing {
+    /// ω, the forcing frequency.
+    pub omega: f64,
+    /// f(s).
+    pub profile: SpatialProfile,
+}
+
+impl Forcing {
+    /// The paper's forcing, eq (37), with the corrected amplitude, at frequency ω.
+    pub fn paper(omega: f64) -> Self {
+        Self {
+            omega,
+            profile: SpatialProfile::UnitTipAtResonance,
+        }
+    }
+}
+
+/// Parameters of the Galerkin model, validated by [`GalerkinModel::new`].
+#[derive(Debug, Clone)]
+pub struct GalerkinParams {
+    /// N, the number of free cantilever modes.
+    pub modes: usize,
+    /// k, the stop stiffness (the stop itself has stiffness k/4, eq 1).
+    pub stop_stiffness: f64,
+    /// d₀, the gap between the tip at rest and the stop.
+    pub gap: f64,
+    /// α: mass-proportional viscous damping, entering as 2α (eq 1).
+    pub viscous_damping: f64,
+    /// γ: stiffness-proportional material damping (eq 31).
+    pub material_damping: f64,
+    /// The harmonic forcing; `None` for free vibration.
+    pub forcing: Option<Forcing>,
+}
+
+impl GalerkinParams {
+    /// N modes, stop stiffness k; no gap, damping or forcing.
+    pub fn new(modes: usize, stop_stiffness: f64) -> Self {
+        Self {
+            modes,
+            stop_stiffness,
+            gap: 0.0,
+            viscous_damping: 0.0,
+            material_damping: 0.0,
+            forcing: None,
+        }
+    }
+
+    /// Sets the gap d₀.
+    pub fn with_gap(mut self, gap: f64) -> Self {
+        self.gap = gap;
+        self
+    }
+
+    /// Sets the viscous damping α.
+    pub fn with_viscous_damping(mut self, alpha: f64) -> Self {
+        self.viscous_damping = alpha;
+        self
+    }
+
+    /// Sets the material damping from ζ₁, the first mode's damping ratio:
+    /// γ = 2ζ₁/(β₁⁻)² (so that C₁₁ = γk₁ = 2ζ₁(β₁⁻)²). A bad ζ₁ surfaces as a bad γ.
+    pub fn with_zeta1(mut self, zeta1: f64) -> Self {
+        self.material_damping = material_damping_from_zeta1(zeta1);
+        self
+    }
+
+    /// Sets the forcing.
+    pub fn with_forcing(mut self, forcing: Forcing) -> Self {
+        self.forcing = Some(forcing);
+        self
+    }
+}
+
+/// γ = 2ζ₁/(β₁⁻)²: the material damping that gives mode 1 the damping ratio ζ₁.
+pub fn material_damping_from_zeta1(zeta1: f64) -> f64 {
+    2.0 * zeta1 / first_frequency()
+}
+
+/// (β₁⁻)², the first free frequency; the time and frequency unit of the CLI.
+pub fn first_frequency() -> f64 {
+    continuum::free_root(1).expect("mode 1 exists").powi(2)
+}
+
+/// k₁ = (β₁⁻)⁴, the first modal stiffness; the unit of stop stiffness in the CLI.
+pub fn first_modal_stiffness() -> f64 {
+    first_frequency().powi(2)
+}
+
+/// The assembled N-mode model.
+#[derive(Debug, Clone)]
+pub struct GalerkinModel {
+    /// The validated parameters.
+    pub params: GalerkinParams,
+    /// β_j^-, j = 1..N.
+    pub beta: Vec<f64>,
+    /// k_j = (β_j^-)⁴.
+    pub modal_stiffness: DVector<f64>,
+    /// φ(1): every entry is 2.
+    pub tip: DVector<f64>,
+    /// Diagonal of [C]: 2α + γk_j.
+    pub damping: DVector<f64>,
+    /// Modal forcing amplitudes f_j = ∫φ_j f ds (zero without forcing).
+    pub forcing_amplitude: DVector<f64>,
+}
+
+impl GalerkinModel {
+    /// Validates the parameters and assembles the model.
+    pub fn new(params: GalerkinParams) -> Result<Self, ParameterError> {
+        let n = error::count_in_range("modes N", params.modes, MAX_MODES)?;
+        error::finite_non_negative("stop stiffness k", params.stop_stiffness)?;
+        error::finite("gap d₀", params.gap)?;
+        error::finite_non_negative("viscous damping α", params.viscous_damping)?;
+        error::finite_non_negative("material damping γ", params.material_damping)?;
+        let beta = continuum::roots(n, 0.0)?;
+        let modal_stiffness = DVector::from_iterator(n, beta.iter().map(|b| b.powi(4)));
+        let damping = modal_stiffness
+            .map(|kj| 2.0 * params.viscous_damping + params.material_damping * kj);
+        let forcing_amplitude = match &params.forcing {
+            None => DVector::zeros(n),
+            Some(f) => {
+                error::finite_positive("forcing frequency ω", f.omega)?;
+                project(&f.profile, n, damping[0], beta[0])?
+            }
+        };
+        Ok(Self {
+            tip: DVector::from_element(n, 2.0),
+            params,
+            beta,
+            modal_stiffness,
+            damping,
+            forcing_amplitude,
+        })
+    }
+
+    /// N.
+    pub fn modes(&self) -> usize {
+        self.beta.len()
+    }
+
+    /// [K^±]: diag(k_j), plus k·11ᵀ in contact (eq 9).
+    pub fn stiffness(&self, region: Region) -> DMatrix<f64> {
+        let mut k = DMatrix::from_diagonal(&self.modal_stiffness);
+        if region == Region::Contact {
+            k += (self.params.stop_stiffness / 4.0) * &self.tip * self.tip.transpose();
+        }
+        k
+    }
+
+    /// [C] = diag(2α + γk_j) (eq 34).
+    pub fn damping_matrix(&self) -> DMatrix<f64> {
+        DMatrix::from_diagonal(&self.damping)
+    }
+
+    /// The constant part of F^±: zero in free flight, (k d₀/4)φ(1) in contact (eq 9).
+    pub fn stop_preload(&self, region: Region) -> DVector<f64> {
+        match region {
+            Region::Free => DVector::zeros(self.modes()),
+            Region::Contact => (self.params.stop_stiffness * self.params.gap / 4.0) * &self.tip,
+        }
+    }
+
+    /// F^±(t) (eq 9).
+    pub fn force(&self, t: f64, region: Region) -> DVector<f64> {
+        let omega = self.params.forcing.as_ref().map_or(0.0, |f| f.omega);
+        &self.forcing_amplitude * (omega * t).cos() + self.stop_preload(region)
+    }
+
+    /// The switching function φ(1)ᵀη − d₀: negative in free flight, positive in contact.
+    pub fn switching_function(&self, eta: &DVector<f64>) -> f64 {
+        self.tip.dot(eta) - self.params.gap
+    }
+
+    /// The region a displacement η lies in (the surface itself counts as contact, §2.1).
+    pub fn region_of(&self, eta: &DVector<f64>) -> Region {
+        if self.switching_function(eta) >= 0.0 {
+            Region::Contact
+        } else {
+            Region::Free
+        }
+    }
+
+    /// [A^±] = [[0, I], [−K^±, −C]] of eq (35), 2N × 2N.
+    pub fn state_matrix(&self, region: Region) -> DMatrix<f64> {
+        let n = self.modes();
+        let mut a = DMatrix::zeros(2 * n, 2 * n);
+        a.view_mut((0, n), (n, n)).fill_with_identity();
+        a.view_mut((n, 0), (n, n)).copy_from(&(-self.stiffness(region)));
+        a.view_mut((n, n), (n, n)).copy_from(&(-self.damping_matrix()));
+        a
+    }
+}
+
+/// f_j = ∫₀¹ φ_j f ds for j = 1..n.
+fn project(
+    profile: &SpatialProfile,
+    n: usize,
+    c11: f64,
+    beta1: f64,
+) -> Result<DVector<f64>, ParameterError> {
+    let k1 = beta1.powi(4);
+    let phi1 = continuum::free_mode(1)?;
+    let amplitudes = match profile {
+        SpatialProfile::Modal(v) => {
+            let mut f = DVector::zeros(n);
+            for (j, &a) in v.iter().take(n).enumerate() {
+                f[j] = error::finite("modal forcing amplitude", a)?;
+            }
+            f
+        }
+        SpatialProfile::UnitTipAtResonance => {
+            let a = c11 * beta1 * beta1 / 2.0;
+            project_function(&|s| a * phi1.value(s), n)?
+        }
+        SpatialProfile::PaperEq37AsPrinted => {
+            let zeta1 = c11 / (2.0 * beta1 * beta1);
+            error::finite_positive("first-mode damping ratio ζ₁ (eq 37 divides by it)", zeta1)?;
+            project_function(&|s| k1 * phi1.value(s) / (4.0 * zeta1), n)?
+        }
+        SpatialProfile::Function(f) => project_function(f.as_ref(), n)?,
+    };
+    for a in amplitudes.iter() {
+        error::finite("projected forcing amplitude", *a)?;
+    }
+    Ok(amplitudes)
+}
+
+fn project_function(f: &dyn Fn(f64) -> f64, n: usize) -> Result<DVector<f64>, ParameterError> {
+    let modes: Vec<_> = (1..=n)
+        .map(continuum::free_mode)
+        .collect::<Result<_, _>>()?;
+    let quad = Quadrature::for_wavenumber(modes[n - 1].beta);
+    let fs: Vec<f64> = quad.nodes.iter().map(|&s| f(s)).collect();
+    Ok(DVector::from_iterator(
+        n,
+        modes.iter().map(|m| {
+            quad.nodes
+                .iter()
+                .zip(&quad.weights)
+                .zip(&fs)
+                .map(|((&s, &w), &fv)| w * m.value(s) * fv)
+                .sum::<f64>()
+        }),
+    ))
+}
+
+/// Eigenvalues λ_1 < … < λ_N of K⁺ = diag(d) + k·11ᵀ (Fig 2), from the secular equation
+/// 1 + k Σ_j 1/(d_j − λ) = 0. Each root is bracketed (interlacing: d_i < λ_i < d_{i+1},
+/// d_N < λ_N ≤ d_N + kN) and solved in the shifted variable μ = λ − d_i, so even
+/// λ_i − d_i ≈ k ≪ d_i keeps full relative accuracy. `d` must be strictly increasing.
+pub fn contact_eigenvalues(d: &[f64], stop_stiffness: f64) -> Vec<f64> {
+    let n = d.len();
+    let k = stop_stiffness;
+    if k == 0.0 {
+        return d.to_vec();
+    }
+    (0..n)
+        .map(|i| {
+            let width = if i + 1 < n { d[i + 1] - d[i] } else { k * n as f64 };
+            // f(μ) → −∞ as μ → 0⁺ and → +∞ (or > 0 at the upper end for i = N) as μ grows.
+            let f = |mu: f64| {
+                1.0 + k * (0..n).map(|j| 1.0 / ((d[j] - d[i]) - mu)).sum::<f64>()
+            };
+            // 1e-100·width: far below any μ ≈ k/… of interest, far above underflow of k/μ.
+            let lo = width * 1e-100;
+            let hi = if i + 1 < n {
+                width * (1.0 - 4.0 * f64::EPSILON)
+            } else {
+                width
+            };
+            let mu = brent(f, lo, hi, 1e-15).unwrap_or(if f(lo).abs() < f(hi).abs() {
+                lo
+            } else {
+                hi
+            });
+            d[i] + mu
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn contact_stiffness_is_diagonal_plus_k_times_ones() {
+        let m = GalerkinModel::new(GalerkinParams::new(3, 7.0)).unwrap();
+        let kp = m.stiffness(Region::Contact);
+        let km = m.stiffness(Region::Free);
+        for i in 0..3 {
+            for j in 0..3 {
+                // entries are sums of two doubles: exact to one rounding of k_j
+                let expected = km[(i, j)] + 7.0;
+                assert!((kp[(i, j)] - expected).abs() <= 4.0 * f64::EPSILON * expected);
+            }
+        }
+    }
+
+    #[test]
+    fn bad_parameters_are_typed_errors() {
+        let err = |p: GalerkinParams| GalerkinModel::new(p).unwrap_err().to_string();
+        assert!(err(GalerkinParams::new(0, 1.0)).starts_with("invalid modes N: got 0"));
+        assert!(err(GalerkinParams::new(2, -1.0)).starts_with("invalid stop stiffness k"));
+        assert!(err(GalerkinParams::new(2, f64::INFINITY)).contains("finite"));
+        assert!(err(GalerkinParams::new(2, 1.0).with_gap(f64::NAN)).contains("gap d₀"));
+        assert!(err(GalerkinParams::new(2, 1.0).with_zeta1(-0.1)).contains("material damping"));
+        let bad_omega = GalerkinParams::new(2, 1.0).with_forcing(Forcing::paper(0.0));
+        assert!(err(bad_omega).contains("forcing frequency ω"));
+    }
+}

@@ -1,0 +1,171 @@
+//! `cantilever`: run the paper's scenes, inspect the spectrum, build the book.
+//!
+//! Every bad input exits with status 2 and one line naming the parameter and what is
+//! allowed.
+
+use clap::{Parser, Subcommand};
+use impacting_cantilever::catalog::{self, Resolution};
+use impacting_cantilever::error::{self, ParameterError};
+use impacting_cantilever::{continuum, galerkin};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(
+    name = "cantilever",
+    version,
+    about = "The impacting cantilever (Melcher, Champneys & Wagg 2013): scenes, checks and the book"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// List the scenes with their place in the paper.
+    List,
+    /// Run one scene and write its plot, table and data.
+    Scene {
+        /// The scene's name (see `cantilever list`).
+        name: String,
+        /// Output directory (default: out/NAME).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Print the scene's key numbers as JSON to stdout.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Continuum eigenvalues (β_i⁺)⁴ against the N-mode Galerkin eigenvalues of K⁺.
+    Modes {
+        /// N, the number of Galerkin modes.
+        #[arg(long)]
+        modes: usize,
+        /// Stop stiffness as k/k₁.
+        #[arg(long, allow_negative_numbers = true)]
+        stop_stiffness: f64,
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Regenerate every scene and build the HTML book (needs the `book` feature).
+    Book {
+        /// The book's root (holding book.toml).
+        #[arg(long, default_value = "book")]
+        book_dir: PathBuf,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(Failure::BadInput(e)) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+        Err(Failure::Other(e)) => {
+            eprintln!("error: {e}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+enum Failure {
+    BadInput(ParameterError),
+    Other(String),
+}
+
+impl From<ParameterError> for Failure {
+    fn from(e: ParameterError) -> Self {
+        Failure::BadInput(e)
+    }
+}
+
+impl From<catalog::SceneError> for Failure {
+    fn from(e: catalog::SceneError) -> Self {
+        match e {
+            catalog::SceneError::Parameter(p) => Failure::BadInput(p),
+            other => Failure::Other(other.to_string()),
+        }
+    }
+}
+
+fn run(cli: Cli) -> Result<(), Failure> {
+    match cli.command {
+        Command::List => {
+            for s in catalog::all() {
+                println!("{:<10} {:<22} {}", s.name, s.paper, s.summary);
+            }
+            Ok(())
+        }
+        Command::Scene { name, out, json } => {
+            let spec = catalog::find(&name)?;
+            let output = (spec.run)(Resolution::Book)?;
+            let dir = out.unwrap_or_else(|| PathBuf::from("out").join(spec.name));
+            catalog::write(&output, &dir)?;
+            if json {
+                let doc = serde_json::json!({
+                    "scene": spec.name,
+                    "paper": spec.paper,
+                    "key_numbers": output.key_numbers.to_json(),
+                });
+                println!("{}", serde_json::to_string_pretty(&doc).expect("json"));
+            } else {
+                println!("{}", output.table);
+                eprintln!("wrote {}", dir.display());
+            }
+            Ok(())
+        }
+        Command::Modes {
+            modes,
+            stop_stiffness,
+            json,
+        } => modes_command(modes, stop_stiffness, json),
+        Command::Book { book_dir } => book_command(&book_dir),
+    }
+}
+
+fn modes_command(modes: usize, k_over_k1: f64, json: bool) -> Result<(), Failure> {
+    error::count_in_range("--modes (N)", modes, galerkin::MAX_MODES)?;
+    error::finite_non_negative("--stop-stiffness (k/k₁)", k_over_k1)?;
+    let k = k_over_k1 * galerkin::first_modal_stiffness();
+    let d: Vec<f64> = (1..=modes)
+        .map(continuum::modal_stiffness)
+        .collect::<Result<_, _>>()?;
+    let lambda = galerkin::contact_eigenvalues(&d, k);
+    let mut rows = Vec::new();
+    for (i, &l) in lambda.iter().enumerate() {
+        let exact = continuum::root(i + 1, k)?.powi(4);
+        rows.push(serde_json::json!({
+            "i": i + 1, "lambda": l, "exact": exact, "rel_error": (l - exact) / exact
+        }));
+        if !json {
+            println!(
+                "i = {:>3}  lambda = {:>22.15e}  exact = {:>22.15e}  rel. error = {:>10.3e}",
+                i + 1,
+                l,
+                exact,
+                (l - exact) / exact
+            );
+        }
+    }
+    if json {
+        let doc = serde_json::json!({"modes": modes, "k_over_k1": k_over_k1, "eigenvalues": rows});
+        println!("{}", serde_json::to_string_pretty(&doc).expect("json"));
+    }
+    Ok(())
+}
+
+#[cfg(feature = "book")]
+fn book_command(book_dir: &std::path::Path) -> Result<(), Failure> {
+    impacting_cantilever::book::build(book_dir).map_err(|e| Failure::Other(format!("{e:#}")))
+}
+
+#[cfg(not(feature = "book"))]
+fn book_command(_: &std::path::Path) -> Result<(), Failure> {
+    Err(Failure::Other(
+        "this binary was built without the `book` feature; run: cargo run --release --features book -- book"
+            .into(),
+    ))
+}

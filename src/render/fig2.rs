@@ -1,0 +1,137 @@
+//! Figure 2: eigenfrequencies of K⁺ (solid) and of the continuum (dashed) against k, for
+//! each N (panels a–c), and λ_N/(kN) (panel d).
+
+use super::{RenderError, WIDTH, cell, drawing, markdown_table, palette};
+use crate::scenes::fig2::Fig2Data;
+use plotters::prelude::*;
+
+/// The SVG plot.
+pub fn plot(d: &Fig2Data) -> Result<String, RenderError> {
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (WIDTH, 820)).into_drawing_area();
+        root.fill(&WHITE).map_err(drawing)?;
+        let panels = root.split_evenly((2, 2));
+        let (lo, hi) = d.params.k_over_k1_range;
+        let w1 = d.k1.sqrt();
+        let letters = ["(a)", "(b)", "(c)", "(d)"];
+        for (p, t) in d.truncations.iter().enumerate().take(3) {
+            let n = t.modes;
+            let ymax = t
+                .lambda
+                .last()
+                .and_then(|l| l.iter().cloned().reduce(f64::max))
+                .unwrap_or(1.0)
+                .sqrt()
+                / w1;
+            let mut chart = ChartBuilder::on(&panels[p])
+                .caption(
+                    format!("{} N = {n}: frequency / (β₁⁻)²", letters[p]),
+                    ("sans-serif", 18),
+                )
+                .margin(8)
+                .x_label_area_size(36)
+                .y_label_area_size(56)
+                .build_cartesian_2d((lo..hi).log_scale(), (0.5..ymax * 1.5).log_scale())
+                .map_err(drawing)?;
+            chart
+                .configure_mesh()
+                .x_desc("k / k₁")
+                .x_label_formatter(&|x| format!("{x:.0e}"))
+                .y_label_formatter(&|y| format!("{y:.0e}"))
+                .draw()
+                .map_err(drawing)?;
+            for (i, lam) in t.lambda.iter().enumerate() {
+                let c = palette(i);
+                chart
+                    .draw_series(LineSeries::new(
+                        d.k_over_k1.iter().zip(lam).map(|(&k, &l)| (k, l.sqrt() / w1)),
+                        c.stroke_width(2),
+                    ))
+                    .map_err(drawing)?;
+                chart
+                    .draw_series(DashedLineSeries::new(
+                        d.k_over_k1
+                            .iter()
+                            .zip(&d.exact[i])
+                            .map(|(&k, &l)| (k, l.sqrt() / w1)),
+                        6,
+                        4,
+                        BLACK.stroke_width(1),
+                    ))
+                    .map_err(drawing)?;
+            }
+        }
+        let ymax_scaled = d
+            .truncations
+            .iter()
+            .flat_map(|t| t.scaled_highest.iter().cloned())
+            .fold(1.0, f64::max)
+            * 1.5;
+        let mut chart = ChartBuilder::on(&panels[3])
+            .caption("(d) highest eigenvalue λ_N / (kN)", ("sans-serif", 18))
+            .margin(8)
+            .x_label_area_size(36)
+            .y_label_area_size(56)
+            .build_cartesian_2d((lo..hi).log_scale(), (0.8..ymax_scaled).log_scale())
+            .map_err(drawing)?;
+        chart
+            .configure_mesh()
+            .x_desc("k / k₁")
+            .x_label_formatter(&|x| format!("{x:.0e}"))
+            .y_label_formatter(&|y| format!("{y:.0e}"))
+            .draw()
+            .map_err(drawing)?;
+        for (p, t) in d.truncations.iter().enumerate() {
+            let c = palette(p);
+            chart
+                .draw_series(LineSeries::new(
+                    d.k_over_k1.iter().cloned().zip(t.scaled_highest.iter().cloned()),
+                    c.stroke_width(2),
+                ))
+                .map_err(drawing)?
+                .label(format!("N = {}", t.modes))
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c));
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .draw()
+            .map_err(drawing)?;
+        root.present().map_err(drawing)?;
+    }
+    Ok(svg)
+}
+
+/// The markdown table at the table's k values.
+pub fn table(d: &Fig2Data) -> String {
+    let rows: Vec<Vec<String>> = d
+        .table
+        .iter()
+        .map(|r| {
+            vec![
+                r.modes.to_string(),
+                cell(r.k_over_k1, 4),
+                r.i.to_string(),
+                cell(r.lambda, 10),
+                cell(r.exact, 10),
+                crate::report::format_sig(r.rel_error, 3),
+                r.scaled_highest.map_or(String::new(), |s| cell(s, 6)),
+            ]
+        })
+        .collect();
+    markdown_table(
+        &[
+            "N",
+            "k/k₁",
+            "i",
+            "λᵢ of K⁺",
+            "(βᵢ⁺)⁴ exact",
+            "rel. error",
+            "λ_N/(kN)",
+        ],
+        &rows,
+    )
+}

@@ -1,0 +1,149 @@
+//! Scene `fig2`: Figure 2 and §2.3 — eigenvalues λ_i of the Galerkin contact stiffness
+//! K⁺ (eq 9) against the continuum (β_i^+)⁴ (eq 3), and the scaled highest eigenvalue
+//! λ_N/(kN), which the paper says tends to 1 (eigenvector 𝟙/√N) as k → ∞.
+
+use crate::continuum;
+use crate::error::ParameterError;
+use crate::galerkin::contact_eigenvalues;
+use serde::Serialize;
+
+/// What the scene computes.
+#[derive(Debug, Clone, Serialize)]
+pub struct Fig2Params {
+    /// Truncations N (panels a–c).
+    pub modes: Vec<usize>,
+    /// k/k₁ range (log-spaced).
+    pub k_over_k1_range: (f64, f64),
+    /// Grid points per decade.
+    pub points_per_decade: usize,
+    /// k/k₁ values of the table.
+    pub table_k_over_k1: Vec<f64>,
+}
+
+impl Default for Fig2Params {
+    fn default() -> Self {
+        Self {
+            modes: vec![1, 3, 10],
+            k_over_k1_range: (1e-2, 1e6),
+            points_per_decade: 20,
+            table_k_over_k1: vec![1.0, 10.0, 100.0, 1000.0],
+        }
+    }
+}
+
+/// One truncation N across the k grid.
+#[derive(Debug, Clone, Serialize)]
+pub struct Truncation {
+    /// N.
+    pub modes: usize,
+    /// λ_i(k) of K⁺, indexed [i − 1][grid point].
+    pub lambda: Vec<Vec<f64>>,
+    /// λ_N/(kN) per grid point (panel d).
+    pub scaled_highest: Vec<f64>,
+}
+
+/// A table row.
+#[derive(Debug, Clone, Serialize)]
+pub struct Fig2Row {
+    /// N.
+    pub modes: usize,
+    /// k/k₁.
+    pub k_over_k1: f64,
+    /// Mode index i.
+    pub i: usize,
+    /// λ_i of K⁺.
+    pub lambda: f64,
+    /// (β_i^+)⁴ of the continuum.
+    pub exact: f64,
+    /// (λ_i − (β_i^+)⁴)/(β_i^+)⁴.
+    pub rel_error: f64,
+    /// λ_N/(kN) (only on the row i = N).
+    pub scaled_highest: Option<f64>,
+}
+
+/// The scene's result.
+#[derive(Debug, Clone, Serialize)]
+pub struct Fig2Data {
+    /// The parameters used.
+    pub params: Fig2Params,
+    /// k₁.
+    pub k1: f64,
+    /// The k/k₁ grid.
+    pub k_over_k1: Vec<f64>,
+    /// (β_i^+(k))⁴ for i = 1..max N, indexed [i − 1][grid point].
+    pub exact: Vec<Vec<f64>>,
+    /// One entry per N.
+    pub truncations: Vec<Truncation>,
+    /// The table at `table_k_over_k1`.
+    pub table: Vec<Fig2Row>,
+}
+
+fn eigenvalues(n: usize, k: f64) -> Result<Vec<f64>, ParameterError> {
+    let d: Vec<f64> = (1..=n)
+        .map(continuum::modal_stiffness)
+        .collect::<Result<_, _>>()?;
+    Ok(contact_eigenvalues(&d, k))
+}
+
+/// Runs the scene.
+pub fn compute(params: &Fig2Params) -> Result<Fig2Data, ParameterError> {
+    let max_n = params.modes.iter().copied().max().unwrap_or(1);
+    crate::error::count_in_range("modes N", max_n, crate::galerkin::MAX_MODES)?;
+    let k1 = continuum::modal_stiffness(1)?;
+    let (lo, hi) = params.k_over_k1_range;
+    let decades = (hi / lo).log10();
+    let points = (decades * params.points_per_decade as f64).round() as usize + 1;
+    let k_over_k1: Vec<f64> = (0..points)
+        .map(|p| lo * 10f64.powf(decades * p as f64 / (points - 1) as f64))
+        .collect();
+    let exact = (1..=max_n)
+        .map(|i| {
+            k_over_k1
+                .iter()
+                .map(|r| Ok(continuum::root(i, r * k1)?.powi(4)))
+                .collect::<Result<Vec<_>, ParameterError>>()
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut truncations = Vec::new();
+    for &n in &params.modes {
+        let per_k = k_over_k1
+            .iter()
+            .map(|r| eigenvalues(n, r * k1))
+            .collect::<Result<Vec<_>, _>>()?;
+        truncations.push(Truncation {
+            modes: n,
+            lambda: (0..n).map(|i| per_k.iter().map(|l| l[i]).collect()).collect(),
+            scaled_highest: per_k
+                .iter()
+                .zip(&k_over_k1)
+                .map(|(l, r)| l[n - 1] / (r * k1 * n as f64))
+                .collect(),
+        });
+    }
+    let mut table = Vec::new();
+    for &n in &params.modes {
+        for &r in &params.table_k_over_k1 {
+            let k = r * k1;
+            for (idx, &lambda) in eigenvalues(n, k)?.iter().enumerate() {
+                let exact = continuum::root(idx + 1, k)?.powi(4);
+                table.push(Fig2Row {
+                    modes: n,
+                    k_over_k1: r,
+                    i: idx + 1,
+                    lambda,
+                    exact,
+                    rel_error: (lambda - exact) / exact,
+                    scaled_highest: (idx + 1 == n).then(|| lambda / (k * n as f64)),
+                });
+            }
+        }
+    }
+    Ok(Fig2Data {
+        params: params.clone(),
+        k1,
+        k_over_k1,
+        exact,
+        truncations,
+        table,
+    })
+}

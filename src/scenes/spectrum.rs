@@ -1,0 +1,196 @@
+//! Scene `spectrum`: the continuum eigenvalues of §2.1 (eqs 3–4).
+//!
+//! Computes β_i^- (free) and β_i^∞ (clamped-pinned) against the golden mpmath roots, the
+//! ratio k₂/k₁ quoted in §5.3 (≈ 39.3), the frequency curves (β_i^+(k))² across k, and the
+//! order and coefficient of the remainder of the small-k law (4).
+
+use crate::continuum;
+use crate::error::ParameterError;
+use crate::golden::GoldenRoots;
+use serde::Serialize;
+
+/// What the scene computes.
+#[derive(Debug, Clone, Serialize)]
+pub struct SpectrumParams {
+    /// Modes drawn in the frequency curves.
+    pub curve_modes: usize,
+    /// k/k₁ range of the curves (log-spaced), and points per decade.
+    pub k_over_k1_range: (f64, f64),
+    /// Points per decade.
+    pub points_per_decade: usize,
+    /// k/k₁ ladder over which the small-k remainder's order is fitted.
+    pub small_k_ladder: Vec<f64>,
+}
+
+impl Default for SpectrumParams {
+    fn default() -> Self {
+        Self {
+            curve_modes: 5,
+            k_over_k1_range: (1e-3, 1e9),
+            points_per_decade: 10,
+            small_k_ladder: (0..7).map(|e| 10f64.powf(-4.0 + 0.5 * e as f64)).collect(),
+        }
+    }
+}
+
+/// One golden comparison.
+#[derive(Debug, Clone, Serialize)]
+pub struct RootCheck {
+    /// Mode index i.
+    pub i: usize,
+    /// Our β.
+    pub ours: f64,
+    /// The golden β (mpmath, 25 digits).
+    pub golden: f64,
+    /// |ours − golden| / golden.
+    pub rel_diff: f64,
+}
+
+/// The small-k law's remainder R(k) = (β_1^+)⁴ − (β_1^-)⁴ − k for mode `i`.
+#[derive(Debug, Clone, Serialize)]
+pub struct SmallKLaw {
+    /// Mode index.
+    pub i: usize,
+    /// The k ladder (absolute k).
+    pub k: Vec<f64>,
+    /// R(k).
+    pub remainder: Vec<f64>,
+    /// Least-squares slope of log|R| against log k (eq 4 says 2).
+    pub fitted_order: f64,
+    /// R/k² at the smallest k.
+    pub fitted_coefficient: f64,
+    /// Second-order perturbation theory: R/k² → −Σ_{j≠i} 1/(k_j − k_i) (j ≤ 1000).
+    pub predicted_coefficient: f64,
+}
+
+/// The scene's result.
+#[derive(Debug, Clone, Serialize)]
+pub struct SpectrumData {
+    /// The parameters used.
+    pub params: SpectrumParams,
+    /// Where the golden values come from.
+    pub golden_source: String,
+    /// β_i^- against golden.
+    pub free: Vec<RootCheck>,
+    /// β_i^∞ against golden.
+    pub clamped_pinned: Vec<RootCheck>,
+    /// β_i^+(k) against golden at the stored k/k₁ (keys "k/k1", i).
+    pub finite_k: Vec<(f64, RootCheck)>,
+    /// k₁ = (β₁⁻)⁴.
+    pub k1: f64,
+    /// k₂/k₁.
+    pub k2_over_k1: f64,
+    /// k/k₁ grid of the curves.
+    pub k_over_k1: Vec<f64>,
+    /// (β_i^+(k))² / (β_1^-)² for i = 1..curve_modes, per grid point.
+    pub frequency: Vec<Vec<f64>>,
+    /// The small-k law (4) prediction of the same, √((β_i^-)⁴ + k)/(β_1^-)².
+    pub frequency_small_k: Vec<Vec<f64>>,
+    /// (β_i^∞)²/(β_1^-)²: the clamped-pinned asymptotes.
+    pub frequency_pinned: Vec<f64>,
+    /// The small-k law remainder, mode 1.
+    pub small_k: SmallKLaw,
+}
+
+fn check(i: usize, ours: f64, golden: f64) -> RootCheck {
+    RootCheck {
+        i,
+        ours,
+        golden,
+        rel_diff: ((ours - golden) / golden).abs(),
+    }
+}
+
+/// Least-squares slope of y against x.
+pub fn fitted_slope(x: &[f64], y: &[f64]) -> f64 {
+    let n = x.len() as f64;
+    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
+    let sxy: f64 = x.iter().zip(y).map(|(a, b)| (a - mx) * (b - my)).sum();
+    let sxx: f64 = x.iter().map(|a| (a - mx) * (a - mx)).sum();
+    sxy / sxx
+}
+
+/// The remainder of eq (4) for mode i over a ladder of k/k₁.
+pub fn small_k_law(i: usize, ladder: &[f64]) -> Result<SmallKLaw, ParameterError> {
+    let k1 = continuum::modal_stiffness(1)?;
+    let ki = continuum::modal_stiffness(i)?;
+    let k: Vec<f64> = ladder.iter().map(|r| r * k1).collect();
+    let remainder = k
+        .iter()
+        .map(|&k| Ok(continuum::root(i, k)?.powi(4) - ki - k))
+        .collect::<Result<Vec<_>, ParameterError>>()?;
+    let lx: Vec<f64> = k.iter().map(|v| v.ln()).collect();
+    let ly: Vec<f64> = remainder.iter().map(|v| v.abs().ln()).collect();
+    let mut predicted = 0.0;
+    for j in 1..=continuum::MAX_MODE_INDEX {
+        if j != i {
+            predicted -= 1.0 / (continuum::modal_stiffness(j)? - ki);
+        }
+    }
+    Ok(SmallKLaw {
+        i,
+        fitted_order: fitted_slope(&lx, &ly),
+        fitted_coefficient: remainder[0] / (k[0] * k[0]),
+        predicted_coefficient: predicted,
+        k,
+        remainder,
+    })
+}
+
+/// Runs the scene.
+pub fn compute(params: &SpectrumParams) -> Result<SpectrumData, ParameterError> {
+    let golden = GoldenRoots::load();
+    let free = GoldenRoots::table(&golden.free)
+        .into_iter()
+        .map(|(i, g)| Ok(check(i, continuum::free_root(i)?, g)))
+        .collect::<Result<Vec<_>, ParameterError>>()?;
+    let clamped_pinned = GoldenRoots::table(&golden.clamped_pinned)
+        .into_iter()
+        .map(|(i, g)| Ok(check(i, continuum::clamped_pinned_root(i)?, g)))
+        .collect::<Result<Vec<_>, ParameterError>>()?;
+    let k1 = continuum::modal_stiffness(1)?;
+    let mut finite_k = Vec::new();
+    for (ratio, table) in &golden.finite_k {
+        let r: f64 = ratio.parse().expect("k/k1 key");
+        for (i, g) in GoldenRoots::table(table) {
+            finite_k.push((r, check(i, continuum::root(i, r * k1)?, g)));
+        }
+    }
+    finite_k.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.i.cmp(&b.1.i)));
+
+    let (lo, hi) = params.k_over_k1_range;
+    let decades = (hi / lo).log10();
+    let points = (decades * params.points_per_decade as f64).round() as usize + 1;
+    let k_over_k1: Vec<f64> = (0..points)
+        .map(|p| lo * 10f64.powf(decades * p as f64 / (points - 1) as f64))
+        .collect();
+    let w1 = continuum::free_root(1)?.powi(2);
+    let mut frequency = Vec::new();
+    let mut frequency_small_k = Vec::new();
+    let mut frequency_pinned = Vec::new();
+    for i in 1..=params.curve_modes {
+        let ki = continuum::modal_stiffness(i)?;
+        frequency.push(
+            k_over_k1
+                .iter()
+                .map(|r| Ok(continuum::root(i, r * k1)?.powi(2) / w1))
+                .collect::<Result<Vec<_>, ParameterError>>()?,
+        );
+        frequency_small_k.push(k_over_k1.iter().map(|r| (ki + r * k1).sqrt() / w1).collect());
+        frequency_pinned.push(continuum::clamped_pinned_root(i)?.powi(2) / w1);
+    }
+    Ok(SpectrumData {
+        params: params.clone(),
+        golden_source: golden.source,
+        free,
+        clamped_pinned,
+        finite_k,
+        k1,
+        k2_over_k1: continuum::modal_stiffness(2)? / k1,
+        k_over_k1,
+        frequency,
+        frequency_small_k,
+        frequency_pinned,
+        small_k: small_k_law(1, &params.small_k_ladder)?,
+    })
+}
