@@ -42,5 +42,5 @@ out["k1"] = mp.nstr(k1, 25)
 out["finite_k"] = {}
 for ratio in ["1e-6", "1", "100", "1000", "1e6", "1e12"]:
     k = mp.mpf(ratio) * k1
-    out["finite_k"][ratio] = {str(i): mp.nstr(bracketed(k, i), 25) for i in [1, 2, 3, 10, 50]}
+    out["finite_k"][ratio] = {str(i): mp.nstr(bracketed(k, i), 25) for i in [1, 2, 3, 10, 50, 100, 200]}
 print(json.dumps(out, indent=2))

@@ -106,7 +106,11 @@ fn run_spectrum(_: Resolution) -> Result<SceneOutput, SceneError> {
     // The fitted order is a regression over 7 points; 3 figures are stable.
     k.float("small_k_fitted_order", d.small_k.fitted_order, 3);
     k.float("small_k_coefficient", d.small_k.fitted_coefficient, 4);
-    k.float("small_k_coefficient_theory", d.small_k.predicted_coefficient, 4);
+    k.float(
+        "small_k_coefficient_theory",
+        d.small_k.predicted_coefficient,
+        4,
+    );
     Ok(SceneOutput {
         key_numbers: k,
         table: render::spectrum::table(&d),

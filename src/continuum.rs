@@ -23,7 +23,7 @@
 //! w_sss = (k/4)(d₀ − w); eq (3), eq (5)–(6) and the energy all require
 //! w_sss = (k/4)(w − d₀). We implement the latter (see the book's errata chapter).
 
-use crate::error::{ParameterError, finite_non_negative};
+use crate::error::{finite_non_negative, ParameterError};
 use crate::numerics::brent;
 use std::f64::consts::PI;
 
@@ -69,8 +69,10 @@ pub fn clamped_pinned_root(i: usize) -> Result<f64, ParameterError> {
     check_index(i)?;
     let lo = i as f64 * PI;
     let hi = lo + 0.5 * PI;
-    Ok(brent(|b| characteristic(b, f64::INFINITY), lo, hi, ROOT_REL_TOL)
-        .expect("sign change by theory"))
+    Ok(
+        brent(|b| characteristic(b, f64::INFINITY), lo, hi, ROOT_REL_TOL)
+            .expect("sign change by theory"),
+    )
 }
 
 /// β_i^+(k): the i-th root of eq (3) for stop stiffness k ∈ [0, ∞] (`f64::INFINITY`
@@ -199,7 +201,7 @@ impl ModeShape {
 /// ∫φ_i² = 1 (§2.2; the text's (−1)^{i+1} is a sign slip, see the errata).
 pub fn free_mode(i: usize) -> Result<ModeShape, ParameterError> {
     let mut m = ModeShape::printed(free_root(i)?);
-    m.scale = if i % 2 == 0 { 1.0 } else { -1.0 };
+    m.scale = if i.is_multiple_of(2) { 1.0 } else { -1.0 };
     Ok(m)
 }
 

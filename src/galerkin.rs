@@ -24,7 +24,7 @@
 
 use crate::continuum;
 use crate::error::{self, ParameterError};
-use crate::numerics::{Quadrature, brent};
+use crate::numerics::{brent, Quadrature};
 use nalgebra::{DMatrix, DVector};
 use std::fmt;
 use std::sync::Arc;
@@ -183,8 +183,8 @@ impl GalerkinModel {
         error::finite_non_negative("material damping γ", params.material_damping)?;
         let beta = continuum::roots(n, 0.0)?;
         let modal_stiffness = DVector::from_iterator(n, beta.iter().map(|b| b.powi(4)));
-        let damping = modal_stiffness
-            .map(|kj| 2.0 * params.viscous_damping + params.material_damping * kj);
+        let damping =
+            modal_stiffness.map(|kj| 2.0 * params.viscous_damping + params.material_damping * kj);
         let forcing_amplitude = match &params.forcing {
             None => DVector::zeros(n),
             Some(f) => {
@@ -254,8 +254,10 @@ impl GalerkinModel {
         let n = self.modes();
         let mut a = DMatrix::zeros(2 * n, 2 * n);
         a.view_mut((0, n), (n, n)).fill_with_identity();
-        a.view_mut((n, 0), (n, n)).copy_from(&(-self.stiffness(region)));
-        a.view_mut((n, n), (n, n)).copy_from(&(-self.damping_matrix()));
+        a.view_mut((n, 0), (n, n))
+            .copy_from(&(-self.stiffness(region)));
+        a.view_mut((n, n), (n, n))
+            .copy_from(&(-self.damping_matrix()));
         a
     }
 }
@@ -325,11 +327,13 @@ pub fn contact_eigenvalues(d: &[f64], stop_stiffness: f64) -> Vec<f64> {
     }
     (0..n)
         .map(|i| {
-            let width = if i + 1 < n { d[i + 1] - d[i] } else { k * n as f64 };
-            // f(μ) → −∞ as μ → 0⁺ and → +∞ (or > 0 at the upper end for i = N) as μ grows.
-            let f = |mu: f64| {
-                1.0 + k * (0..n).map(|j| 1.0 / ((d[j] - d[i]) - mu)).sum::<f64>()
+            let width = if i + 1 < n {
+                d[i + 1] - d[i]
+            } else {
+                k * n as f64
             };
+            // f(μ) → −∞ as μ → 0⁺ and → +∞ (or > 0 at the upper end for i = N) as μ grows.
+            let f = |mu: f64| 1.0 + k * (0..n).map(|j| 1.0 / ((d[j] - d[i]) - mu)).sum::<f64>();
             // 1e-100·width: far below any μ ≈ k/… of interest, far above underflow of k/μ.
             let lo = width * 1e-100;
             let hi = if i + 1 < n {
@@ -337,11 +341,8 @@ pub fn contact_eigenvalues(d: &[f64], stop_stiffness: f64) -> Vec<f64> {
             } else {
                 width
             };
-            let mu = brent(f, lo, hi, 1e-15).unwrap_or(if f(lo).abs() < f(hi).abs() {
-                lo
-            } else {
-                hi
-            });
+            let mu =
+                brent(f, lo, hi, 1e-15).unwrap_or(if f(lo).abs() < f(hi).abs() { lo } else { hi });
             d[i] + mu
         })
         .collect()

@@ -23,7 +23,8 @@ pub struct GoldenRoots {
 impl GoldenRoots {
     /// Parses the embedded file.
     pub fn load() -> Self {
-        serde_json::from_str(include_str!("../golden/roots.json")).expect("golden/roots.json parses")
+        serde_json::from_str(include_str!("../golden/roots.json"))
+            .expect("golden/roots.json parses")
     }
 
     /// (i, β) pairs of a table, sorted by i.
@@ -40,7 +41,8 @@ impl GoldenRoots {
 /// Classical table of roots at its printed precision: Blevins, *Formulas for Natural
 /// Frequency and Mode Shape* (1979), Table 8-1, clamped-free and clamped-pinned, i = 1..5.
 /// Used to check the mpmath values independently of the computer algebra.
-pub const BLEVINS_CLAMPED_FREE: [f64; 5] = [1.87510407, 4.69409113, 7.85475744, 10.9955407, 14.1371684];
+pub const BLEVINS_CLAMPED_FREE: [f64; 5] =
+    [1.87510407, 4.69409113, 7.85475744, 10.9955407, 14.1371684];
 /// See [`BLEVINS_CLAMPED_FREE`].
 pub const BLEVINS_CLAMPED_PINNED: [f64; 5] =
     [3.92660231, 7.06858275, 10.2101761, 13.3517688, 16.4933614];

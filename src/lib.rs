@@ -13,11 +13,11 @@
 //! - [`render`]: plots and tables of scene data (no numerics);
 //! - [`numerics`], [`error`], [`report`]: shared building blocks.
 
+pub mod catalog;
 pub mod continuum;
 pub mod error;
 pub mod galerkin;
 pub mod golden;
-pub mod catalog;
 pub mod numerics;
 pub mod render;
 pub mod report;

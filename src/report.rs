@@ -53,7 +53,8 @@ impl KeyNumbers {
     /// Adds a float kept to `digits` significant figures.
     pub fn float(&mut self, name: impl Into<String>, value: f64, digits: usize) {
         let value = round_sig(value, digits);
-        self.0.push((name.into(), KeyValue::Float { value, digits }));
+        self.0
+            .push((name.into(), KeyValue::Float { value, digits }));
     }
 
     /// Adds an integer.
@@ -68,10 +69,7 @@ impl KeyNumbers {
 
     /// `name = value` lines: the snapshot format.
     pub fn to_snapshot(&self) -> String {
-        self.0
-            .iter()
-            .map(|(k, v)| format!("{k} = {v}\n"))
-            .collect()
+        self.0.iter().map(|(k, v)| format!("{k} = {v}\n")).collect()
     }
 
     /// A JSON object in insertion order.

@@ -1,7 +1,7 @@
 //! Figure 2: eigenfrequencies of K⁺ (solid) and of the continuum (dashed) against k, for
 //! each N (panels a–c), and λ_N/(kN) (panel d).
 
-use super::{RenderError, WIDTH, cell, drawing, markdown_table, palette};
+use super::{cell, drawing, markdown_table, palette, RenderError, WIDTH};
 use crate::scenes::fig2::Fig2Data;
 use plotters::prelude::*;
 
@@ -45,7 +45,10 @@ pub fn plot(d: &Fig2Data) -> Result<String, RenderError> {
                 let c = palette(i);
                 chart
                     .draw_series(LineSeries::new(
-                        d.k_over_k1.iter().zip(lam).map(|(&k, &l)| (k, l.sqrt() / w1)),
+                        d.k_over_k1
+                            .iter()
+                            .zip(lam)
+                            .map(|(&k, &l)| (k, l.sqrt() / w1)),
                         c.stroke_width(2),
                     ))
                     .map_err(drawing)?;
@@ -86,7 +89,10 @@ pub fn plot(d: &Fig2Data) -> Result<String, RenderError> {
             let c = palette(p);
             chart
                 .draw_series(LineSeries::new(
-                    d.k_over_k1.iter().cloned().zip(t.scaled_highest.iter().cloned()),
+                    d.k_over_k1
+                        .iter()
+                        .cloned()
+                        .zip(t.scaled_highest.iter().cloned()),
                     c.stroke_width(2),
                 ))
                 .map_err(drawing)?

@@ -1,7 +1,7 @@
 //! The continuum spectrum: (β_i^+)² across k with the small-k law (4) and the
 //! clamped-pinned asymptotes; the remainder of (4) against k.
 
-use super::{RenderError, WIDTH, cell, drawing, markdown_table, palette};
+use super::{cell, drawing, markdown_table, palette, RenderError, WIDTH};
 use crate::report::format_sig;
 use crate::scenes::spectrum::SpectrumData;
 use plotters::prelude::*;
@@ -16,7 +16,10 @@ pub fn plot(d: &SpectrumData) -> Result<String, RenderError> {
         let (lo, hi) = d.params.k_over_k1_range;
         let ymax = d.frequency_pinned.last().copied().unwrap_or(10.0) * 1.3;
         let mut chart = ChartBuilder::on(&left)
-            .caption("(β_i⁺)² / (β₁⁻)² against k (dashed: eq 4)", ("sans-serif", 18))
+            .caption(
+                "(β_i⁺)² / (β₁⁻)² against k (dashed: eq 4)",
+                ("sans-serif", 18),
+            )
             .margin(8)
             .x_label_area_size(36)
             .y_label_area_size(48)
@@ -118,7 +121,10 @@ pub fn plot(d: &SpectrumData) -> Result<String, RenderError> {
 /// The markdown tables: golden comparisons, k₂/k₁ and the small-k law.
 pub fn table(d: &SpectrumData) -> String {
     let mut rows = Vec::new();
-    for (kind, checks) in [("free (k = 0)", &d.free), ("clamped-pinned (k = ∞)", &d.clamped_pinned)] {
+    for (kind, checks) in [
+        ("free (k = 0)", &d.free),
+        ("clamped-pinned (k = ∞)", &d.clamped_pinned),
+    ] {
         for c in checks.iter() {
             rows.push(vec![
                 kind.to_string(),
@@ -138,7 +144,10 @@ pub fn table(d: &SpectrumData) -> String {
             format_sig(c.rel_diff, 2),
         ]);
     }
-    let mut s = markdown_table(&["stop", "i", "β_i (ours)", "β_i (golden)", "rel. diff."], &rows);
+    let mut s = markdown_table(
+        &["stop", "i", "β_i (ours)", "β_i (golden)", "rel. diff."],
+        &rows,
+    );
     s.push_str(&format!("\nGolden source: {}.\n\n", d.golden_source));
     let sk = &d.small_k;
     s.push_str(&markdown_table(
@@ -146,8 +155,14 @@ pub fn table(d: &SpectrumData) -> String {
         &[
             vec!["k₁ = (β₁⁻)⁴".into(), cell(d.k1, 12)],
             vec!["k₂/k₁".into(), cell(d.k2_over_k1, 8)],
-            vec!["fitted order of the remainder of (4)".into(), cell(sk.fitted_order, 4)],
-            vec!["remainder / k² at smallest k".into(), format_sig(sk.fitted_coefficient, 5)],
+            vec![
+                "fitted order of the remainder of (4)".into(),
+                cell(sk.fitted_order, 4),
+            ],
+            vec![
+                "remainder / k² at smallest k".into(),
+                format_sig(sk.fitted_coefficient, 5),
+            ],
             vec![
                 "second-order theory −Σ_{j≠1} 1/(k_j − k₁)".into(),
                 format_sig(sk.predicted_coefficient, 5),

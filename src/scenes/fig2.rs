@@ -112,7 +112,9 @@ pub fn compute(params: &Fig2Params) -> Result<Fig2Data, ParameterError> {
             .collect::<Result<Vec<_>, _>>()?;
         truncations.push(Truncation {
             modes: n,
-            lambda: (0..n).map(|i| per_k.iter().map(|l| l[i]).collect()).collect(),
+            lambda: (0..n)
+                .map(|i| per_k.iter().map(|l| l[i]).collect())
+                .collect(),
             scaled_highest: per_k
                 .iter()
                 .zip(&k_over_k1)

@@ -176,7 +176,12 @@ pub fn compute(params: &SpectrumParams) -> Result<SpectrumData, ParameterError> 
                 .map(|r| Ok(continuum::root(i, r * k1)?.powi(2) / w1))
                 .collect::<Result<Vec<_>, ParameterError>>()?,
         );
-        frequency_small_k.push(k_over_k1.iter().map(|r| (ki + r * k1).sqrt() / w1).collect());
+        frequency_small_k.push(
+            k_over_k1
+                .iter()
+                .map(|r| (ki + r * k1).sqrt() / w1)
+                .collect(),
+        );
         frequency_pinned.push(continuum::clamped_pinned_root(i)?.powi(2) / w1);
     }
     Ok(SpectrumData {

@@ -1,0 +1,251 @@
+//! `cantilever book`: regenerate every scene into `book/src/generated/NAME/` and build the
+//! HTML book with mdBook, in-process (feature `book`).
+//!
+//! Math is written in the chapters as `$…$` and `$$…$$` and converted here to MathML
+//! (pulldown-latex), which browsers render natively; the vendored stylesheet and Latin
+//! Modern Math font in `book/assets/math/` make it look right offline. No page loads
+//! anything from a CDN.
+
+use crate::catalog::{self, Resolution};
+use anyhow::{bail, Context, Result};
+use indicatif::{ProgressBar, ProgressStyle};
+use mdbook_driver::MDBook;
+use mdbook_preprocessor::book::{Book, BookItem};
+use mdbook_preprocessor::{Preprocessor, PreprocessorContext};
+use pulldown_latex::config::DisplayMode;
+use pulldown_latex::{push_mathml, Parser, RenderConfig, Storage};
+use rayon::prelude::*;
+use std::path::Path;
+use std::time::Instant;
+
+/// Regenerates every scene (in parallel, with progress) and builds the book at `root`.
+pub fn build(root: &Path) -> Result<()> {
+    if !root.join("book.toml").exists() {
+        bail!(
+            "no book.toml in '{}': run from the repository root or pass --book-dir",
+            root.display()
+        );
+    }
+    let started = Instant::now();
+    let generated = root.join("src").join("generated");
+    let scenes = catalog::all();
+    let bar = ProgressBar::new(scenes.len() as u64).with_style(
+        ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {pos}/{len} scenes {msg}")
+            .expect("template")
+            .progress_chars("=> "),
+    );
+    let timings: Vec<Result<(String, f64)>> = scenes
+        .par_iter()
+        .map(|spec| {
+            let t = Instant::now();
+            let out =
+                (spec.run)(Resolution::Book).with_context(|| format!("scene {}", spec.name))?;
+            catalog::write(&out, &generated.join(spec.name))?;
+            bar.inc(1);
+            bar.set_message(spec.name);
+            Ok((spec.name.to_string(), t.elapsed().as_secs_f64()))
+        })
+        .collect();
+    bar.finish_and_clear();
+    for t in timings {
+        let (name, secs) = t?;
+        eprintln!("scene {name:<10} {secs:>8.2} s");
+    }
+    let t = Instant::now();
+    let mut book = MDBook::load(root).context("loading the book")?;
+    book.with_preprocessor(MathPreprocessor);
+    book.build().context("building the book")?;
+    // The stylesheet refers to its fonts by relative path; mdBook copies only the CSS.
+    copy_dir(
+        &root.join("assets/math/font"),
+        &root.join("build/assets/math/font"),
+    )?;
+    eprintln!("book built in {:.2} s", t.elapsed().as_secs_f64());
+    eprintln!(
+        "done in {:.2} s: open {}",
+        started.elapsed().as_secs_f64(),
+        root.join("build").join("index.html").display()
+    );
+    Ok(())
+}
+
+fn copy_dir(from: &Path, to: &Path) -> Result<()> {
+    std::fs::create_dir_all(to).with_context(|| format!("creating {}", to.display()))?;
+    for entry in std::fs::read_dir(from).with_context(|| format!("reading {}", from.display()))? {
+        let entry = entry?;
+        std::fs::copy(entry.path(), to.join(entry.file_name()))
+            .with_context(|| format!("copying {}", entry.path().display()))?;
+    }
+    Ok(())
+}
+
+/// Converts `$…$` (inline) and `$$…$$` (display) to MathML, outside code.
+pub struct MathPreprocessor;
+
+impl Preprocessor for MathPreprocessor {
+    fn name(&self) -> &str {
+        "mathml"
+    }
+
+    fn run(
+        &self,
+        _: &PreprocessorContext,
+        mut book: Book,
+    ) -> mdbook_preprocessor::errors::Result<Book> {
+        let mut failure = None;
+        book.for_each_mut(|item| {
+            if let BookItem::Chapter(ch) = item {
+                match convert_math(&ch.content) {
+                    Ok(c) => ch.content = c,
+                    Err(e) => {
+                        failure.get_or_insert(anyhow::anyhow!("chapter '{}': {e}", ch.name));
+                    }
+                }
+            }
+        });
+        match failure {
+            Some(e) => Err(e),
+            None => Ok(book),
+        }
+    }
+}
+
+/// One LaTeX fragment to MathML; parse errors are errors (the book must not ship them).
+pub fn latex_to_mathml(tex: &str, display: bool) -> Result<String> {
+    let storage = Storage::new();
+    let events: Vec<_> = Parser::new(tex, &storage).collect();
+    if let Some(Err(e)) = events.iter().find(|e| e.is_err()) {
+        bail!("cannot parse LaTeX `{tex}`: {e}");
+    }
+    let config = RenderConfig {
+        display_mode: if display {
+            DisplayMode::Block
+        } else {
+            DisplayMode::Inline
+        },
+        ..Default::default()
+    };
+    let mut out = String::new();
+    push_mathml(&mut out, events.into_iter(), config)?;
+    // The MathML sits inside markdown: hide characters markdown would act on, and repair
+    // pulldown-latex 0.8's `stretchy="true"minsize=…` (no space between attributes after
+    // \bigl and friends), which markdown would not recognise as a tag.
+    let mut safe = String::with_capacity(out.len());
+    let chars: Vec<char> = out.chars().collect();
+    for (i, &c) in chars.iter().enumerate() {
+        let closing_quote = c == '"' && i > 0 && chars[i - 1] != '=';
+        if closing_quote && chars.get(i + 1).is_some_and(|n| n.is_ascii_alphabetic()) {
+            safe.push_str("\" ");
+            continue;
+        }
+        match c {
+            '*' | '_' | '\\' | '`' | '[' | ']' | '$' | '~' | '|' | '\n' => {
+                if c != '\n' {
+                    safe.push_str(&format!("&#{};", c as u32));
+                }
+            }
+            c => safe.push(c),
+        }
+    }
+    Ok(safe)
+}
+
+/// Replaces math delimiters in markdown, leaving fenced code and inline code alone.
+/// `\$` is a literal dollar sign.
+pub fn convert_math(markdown: &str) -> Result<String> {
+    let mut out = String::with_capacity(markdown.len());
+    let mut in_fence = false;
+    let mut display: Option<String> = None;
+    for line in markdown.split_inclusive('\n') {
+        if display.is_none() && line.trim_start().starts_with("```") {
+            in_fence = !in_fence;
+            out.push_str(line);
+            continue;
+        }
+        if in_fence {
+            out.push_str(line);
+            continue;
+        }
+        let mut rest = line;
+        while !rest.is_empty() {
+            if let Some(buf) = display.as_mut() {
+                match rest.find("$$") {
+                    Some(end) => {
+                        buf.push_str(&rest[..end]);
+                        out.push_str(&latex_to_mathml(buf.trim(), true)?);
+                        display = None;
+                        rest = &rest[end + 2..];
+                    }
+                    None => {
+                        buf.push_str(rest);
+                        rest = "";
+                    }
+                }
+                continue;
+            }
+            let Some(pos) = rest.find(['$', '`', '\\']) else {
+                out.push_str(rest);
+                break;
+            };
+            out.push_str(&rest[..pos]);
+            let tail = &rest[pos..];
+            if let Some(after) = tail.strip_prefix("\\$") {
+                out.push('$');
+                rest = after;
+            } else if let Some(after) = tail.strip_prefix('\\') {
+                out.push('\\');
+                rest = after;
+            } else if let Some(code) = tail.strip_prefix('`') {
+                let end = code.find('`').map_or(tail.len(), |e| e + 2);
+                out.push_str(&tail[..end]);
+                rest = &tail[end..];
+            } else if let Some(after) = tail.strip_prefix("$$") {
+                display = Some(String::new());
+                rest = after;
+            } else {
+                let inner = &tail[1..];
+                let Some(end) = inner.find('$') else {
+                    bail!("unclosed inline math in line: {}", line.trim_end());
+                };
+                out.push_str(&latex_to_mathml(&inner[..end], false)?);
+                rest = &inner[end + 1..];
+            }
+        }
+    }
+    if display.is_some() {
+        bail!("unclosed display math ($$)");
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn math_becomes_mathml_and_code_is_left_alone() {
+        let md = "Let $k_j = (\\beta_j^-)^4$ and `$x$`.\n```\n$y$\n```\n$$\nK^+ = K^- + k\\mathbf{1}\\mathbf{1}^T\n$$\nCost \\$5.\n";
+        let html = convert_math(md).unwrap();
+        assert!(html.contains("<math"));
+        assert!(html.contains("display=\"block\""));
+        assert!(html.contains("`$x$`"));
+        assert!(html.contains("\n$y$\n"));
+        assert!(html.contains("Cost $5."));
+        assert!(!html.contains("k_j"));
+    }
+
+    #[test]
+    fn delimiter_sizes_give_well_formed_attributes() {
+        let html = latex_to_mathml("\\bigl(x\\bigr)", false).unwrap();
+        assert!(
+            !html.contains("\"minsize") && !html.contains("\"maxsize"),
+            "{html}"
+        );
+    }
+
+    #[test]
+    fn bad_latex_is_an_error() {
+        assert!(convert_math("$\\frac{1}$").is_err());
+        assert!(convert_math("$x").is_err());
+    }
+}

@@ -1,0 +1,86 @@
+//! The command line: bad input exits with status 2 and one line naming the parameter
+//! and what is allowed; scenes print their key numbers as JSON.
+
+use std::process::Command;
+
+fn cantilever(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_cantilever"))
+        .args(args)
+        .current_dir(std::env::temp_dir())
+        .output()
+        .expect("runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn unknown_scene_is_rejected_with_the_list_of_scenes() {
+    let (code, _, err) = cantilever(&["scene", "nope"]);
+    assert_eq!(code, 2);
+    assert_eq!(
+        err,
+        "error: invalid scene NAME: got nope; allowed: one of spectrum, fig2\n"
+    );
+}
+
+#[test]
+fn zero_modes_is_rejected() {
+    let (code, _, err) = cantilever(&["modes", "--modes", "0", "--stop-stiffness", "1"]);
+    assert_eq!(code, 2);
+    assert_eq!(
+        err,
+        "error: invalid --modes (N): got 0; allowed: an integer from 1 to 400\n"
+    );
+}
+
+#[test]
+fn negative_and_non_finite_stiffness_are_rejected() {
+    for (given, shown) in [("-5", "-5"), ("nan", "NaN"), ("inf", "inf")] {
+        let (code, _, err) = cantilever(&["modes", "--modes", "3", "--stop-stiffness", given]);
+        assert_eq!(code, 2, "{given}");
+        assert_eq!(
+            err,
+            format!(
+                "error: invalid --stop-stiffness (k/k₁): got {shown}; allowed: a finite number ≥ 0\n"
+            )
+        );
+    }
+}
+
+#[test]
+fn list_names_every_scene_with_its_paper_reference() {
+    let (code, out, _) = cantilever(&["list"]);
+    assert_eq!(code, 0);
+    assert!(out.contains("spectrum") && out.contains("§2.1"));
+    assert!(out.contains("fig2") && out.contains("Fig 2"));
+}
+
+#[test]
+fn fig2_json_prints_the_table() {
+    let dir = std::env::temp_dir().join(format!("cantilever-cli-{}", std::process::id()));
+    let (code, out, _) = cantilever(&["scene", "fig2", "--json", "--out", dir.to_str().unwrap()]);
+    assert_eq!(code, 0);
+    let v: serde_json::Value = serde_json::from_str(&out).expect("stdout is JSON");
+    assert_eq!(v["scene"], "fig2");
+    let k = &v["key_numbers"];
+    // N = 1: λ₁ = k₁ + k exactly, so at k = 100 k₁ it is 101 k₁ = 1248.598700 (10 figures)
+    assert_eq!(k["N=1 k/k1=100 i=1 lambda"], 1248.5987);
+    for f in ["plot.svg", "table.md", "data.json", "key_numbers.json"] {
+        assert!(dir.join(f).exists(), "{f} written");
+    }
+    std::fs::remove_dir_all(dir).ok();
+}
+
+#[test]
+fn modes_command_compares_galerkin_and_continuum() {
+    let (code, out, _) = cantilever(&["modes", "--modes", "2", "--stop-stiffness", "0", "--json"]);
+    assert_eq!(code, 0);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    // with k = 0 both are the free cantilever: identical to round-off
+    for e in v["eigenvalues"].as_array().unwrap() {
+        assert!(e["rel_error"].as_f64().unwrap().abs() < 1e-14);
+    }
+}

@@ -1,0 +1,101 @@
+//! Every scene's key numbers, snapshotted (insta), and backed by assertions against
+//! independent values so that a changed digit is explained rather than re-accepted.
+
+use impacting_cantilever::catalog::{self, Resolution};
+use impacting_cantilever::scenes::{fig2, spectrum};
+
+#[test]
+fn every_scene_key_numbers_snapshot() {
+    for spec in catalog::all() {
+        let out = (spec.run)(Resolution::Test).unwrap();
+        assert!(
+            !out.key_numbers.0.is_empty(),
+            "{} has key numbers",
+            spec.name
+        );
+        assert!(out.svg.starts_with("<svg"), "{} draws a plot", spec.name);
+        assert!(out.table.contains("|---"), "{} has a table", spec.name);
+        insta::assert_snapshot!(spec.name, out.key_numbers.to_snapshot());
+    }
+}
+
+#[test]
+fn spectrum_scene_agrees_with_golden_everywhere() {
+    let d = spectrum::compute(&Default::default()).unwrap();
+    let all = d
+        .free
+        .iter()
+        .chain(&d.clamped_pinned)
+        .chain(d.finite_k.iter().map(|p| &p.1));
+    for c in all {
+        // the root accuracy target
+        assert!(c.rel_diff < 1e-13, "i={} {} vs {}", c.i, c.ours, c.golden);
+    }
+    // frequency curves rise monotonically from the free to the clamped-pinned value
+    for (i, f) in d.frequency.iter().enumerate() {
+        assert!(f.windows(2).all(|w| w[1] >= w[0]));
+        assert!(*f.last().unwrap() <= d.frequency_pinned[i] * (1.0 + 1e-12));
+    }
+}
+
+#[test]
+fn fig2_claims_of_section_2_3() {
+    let d = fig2::compute(&Default::default()).unwrap();
+    for t in &d.truncations {
+        let n = t.modes;
+        // "the highest-order mode diverges from the exact solution as k → ∞":
+        // at k = 1e6 k₁ the top Galerkin eigenvalue exceeds the continuum one by > 10×
+        let last = d.k_over_k1.len() - 1;
+        assert!(t.lambda[n - 1][last] > 10.0 * d.exact[n - 1][last], "N={n}");
+        // "λ_N = kN": within O(k_N/(kN)) at the top of the grid
+        let kn = d.exact[n - 1][0];
+        assert!((t.scaled_highest[last] - 1.0).abs() < 2.0 * kn / (1e6 * d.k1 * n as f64));
+        // Galerkin eigenvalues bound the continuum ones from above (Rayleigh–Ritz), for
+        // every k; allow round-off of 1e-13 relative.
+        for i in 0..n {
+            for (p, &l) in t.lambda[i].iter().enumerate() {
+                assert!(l >= d.exact[i][p] * (1.0 - 1e-13), "N={n} i={i} p={p}");
+            }
+        }
+    }
+    // "for fixed k, modal convergence as N → ∞": at k = k₁ the error of λ₁ falls with N
+    let row = |n, r: f64, i| {
+        d.table
+            .iter()
+            .find(|x| x.modes == n && x.k_over_k1 == r && x.i == i)
+            .unwrap()
+            .rel_error
+    };
+    assert!(row(1, 1.0, 1) > row(3, 1.0, 1) && row(3, 1.0, 1) > row(10, 1.0, 1));
+}
+
+#[test]
+fn verdict_numbers_quoted_in_the_book() {
+    // book/src/fig2.md and spectrum.md quote these; if one moves, the chapter must change.
+    let d = fig2::compute(&Default::default()).unwrap();
+    let row = |n, r: f64, i| {
+        d.table
+            .iter()
+            .find(|x| x.modes == n && x.k_over_k1 == r && x.i == i)
+            .unwrap()
+            .clone()
+    };
+    let quoted = |x: f64, printed: f64, figures: i32| {
+        // a number printed to `figures` significant figures: ± half a unit in the last one
+        let unit = 10f64.powi(printed.abs().log10().floor() as i32 - figures + 1);
+        (x - printed).abs() <= 0.5 * unit
+    };
+    assert!(quoted(row(10, 1000.0, 10).rel_error * 100.0, 0.16, 2));
+    assert!(quoted(
+        row(3, 1000.0, 3).lambda / row(3, 1000.0, 3).exact,
+        3.8,
+        2
+    ));
+    assert!(quoted(row(1, 1.0, 1).rel_error, 1.6e-2, 2));
+    assert!(quoted(row(3, 1.0, 1).rel_error, 7.1e-4, 2));
+    assert!(quoted(row(10, 1.0, 1).rel_error, 2.0e-5, 2));
+    let s = spectrum::compute(&Default::default()).unwrap();
+    assert!(quoted(s.k2_over_k1, 39.2739, 6));
+    assert!(quoted(s.small_k.fitted_order, 2.00, 3));
+    assert!(quoted(s.small_k.fitted_coefficient, -2.497e-3, 4));
+}
