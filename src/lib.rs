@@ -16,6 +16,7 @@
 pub mod catalog;
 pub mod continuum;
 pub mod error;
+pub mod flow;
 pub mod galerkin;
 pub mod golden;
 pub mod numerics;
