@@ -106,7 +106,10 @@ impl RegionFlow {
         let mut static_state = DVector::zeros(2 * n);
         if region == Region::Contact && preload.iter().any(|p| *p != 0.0) {
             let k = model.stiffness(region);
-            let eta = k.cholesky().map(|c| c.solve(&preload)).ok_or(FlowError::Eigen)?;
+            let eta = k
+                .cholesky()
+                .map(|c| c.solve(&preload))
+                .ok_or(FlowError::Eigen)?;
             static_state.rows_mut(0, n).copy_from(&eta);
         }
         let tip_of_mode = (0..2 * n)
@@ -137,7 +140,10 @@ impl RegionFlow {
         let e = Complex64::from_polar(1.0, phase);
         DVector::from_iterator(
             2 * self.modes,
-            self.forced.iter().zip(self.static_state.iter()).map(|(x, s)| (x * e).re + s),
+            self.forced
+                .iter()
+                .zip(self.static_state.iter())
+                .map(|(x, s)| (x * e).re + s),
         )
     }
 

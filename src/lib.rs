@@ -23,6 +23,8 @@ pub mod numerics;
 pub mod render;
 pub mod report;
 pub mod scenes;
+pub mod simulate;
+pub mod simulator;
 
 #[cfg(feature = "book")]
 pub mod book;

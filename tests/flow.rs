@@ -7,7 +7,13 @@ use nalgebra::{DMatrix, DVector};
 
 /// x(s) from expm of [[A, b̂, 0, ĉ], [0, 0, −ω, 0], [0, ω, 0, 0], [0, 0, 0, 0]] acting on
 /// [x₀; cos θ₀; sin θ₀; 1]: an independent exact solution of ẋ = Ax + b̂ cos ωt + ĉ.
-fn expm_solution(m: &GalerkinModel, region: Region, x0: &DVector<f64>, phase: f64, s: f64) -> DVector<f64> {
+fn expm_solution(
+    m: &GalerkinModel,
+    region: Region,
+    x0: &DVector<f64>,
+    phase: f64,
+    s: f64,
+) -> DVector<f64> {
     let n2 = 2 * m.modes();
     let a = m.state_matrix(region);
     let omega = m.params.forcing.as_ref().unwrap().omega;
@@ -40,7 +46,9 @@ fn check(n: usize, k_over_k1: f64, zeta1: f64, gap: f64, s: f64) -> f64 {
     for region in [Region::Free, Region::Contact] {
         let flow = RegionFlow::new(&m, region).unwrap();
         // a deterministic, non-special initial state with O(1) tip displacement
-        let x0 = DVector::from_fn(2 * n, |i, _| 0.3 * ((i as f64 + 1.0) * 1.7).sin() / (1.0 + i as f64));
+        let x0 = DVector::from_fn(2 * n, |i, _| {
+            0.3 * ((i as f64 + 1.0) * 1.7).sin() / (1.0 + i as f64)
+        });
         let phase = 0.7;
         let w = flow.coefficients(&x0, phase);
         let ours = flow.state(&w, phase, s);
@@ -81,4 +89,3 @@ fn flow_matches_in_stiff_cases() {
     assert!(check(40, 1e5, 0.01, 0.0, 1e-3) < 2e-10);
     assert!(check(100, 1e3, 0.01, 0.0, 1e-2) < 1e-8);
 }
-

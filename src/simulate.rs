@@ -1,0 +1,235 @@
+//! `cantilever simulate`: the paper's forced simulation (§5.2) from rest — discard a
+//! transient, record contact events, detect the period m and the contacts per period n.
+//!
+//! Parameters are in the CLI's units: k/k₁ and ω/(β₁⁻)². The forcing is eq (37) with the
+//! corrected amplitude (unit unconstrained tip amplitude at resonance; errata E2), and the
+//! damping is material, γ = 2ζ₁/(β₁⁻)² (errata E3).
+
+use crate::error::{self, ParameterError};
+use crate::flow::FlowError;
+use crate::galerkin::{self, Forcing, GalerkinModel, GalerkinParams};
+use crate::simulator::{Clock, EnergyBudget, Event, Observe, Simulator};
+use nalgebra::DVector;
+use std::time::Instant;
+
+/// Periodicity threshold of §5.2: ‖x(t₀ + mT) − x(t₀)‖ < 1e-9 (max norm on [η; η̇]).
+pub const PERIODIC_TOLERANCE: f64 = 1e-9;
+
+/// The command's inputs.
+#[derive(Debug, Clone)]
+pub struct Args {
+    /// N.
+    pub modes: usize,
+    /// k/k₁.
+    pub stop_stiffness: f64,
+    /// d₀.
+    pub gap: f64,
+    /// ζ₁.
+    pub zeta1: f64,
+    /// ω/(β₁⁻)².
+    pub omega: f64,
+    /// Transient periods.
+    pub periods: u64,
+    /// Recorded periods.
+    pub record: u64,
+}
+
+/// Why the command failed.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// Bad input.
+    #[error(transparent)]
+    Parameter(#[from] ParameterError),
+    /// The flow could not be built.
+    #[error(transparent)]
+    Flow(#[from] FlowError),
+}
+
+/// What the command reports.
+#[derive(Debug, Clone)]
+pub struct Report {
+    /// The inputs.
+    pub args: Args,
+    /// Contact events in the recorded window.
+    pub events: Vec<Event>,
+    /// The smallest m ≤ record/2 with ‖x(t₀ + mT) − x(t₀)‖∞ < 1e-9, if any.
+    pub period_m: Option<u64>,
+    /// The smallest residual ‖x(t₀ + mT) − x(t₀)‖∞ over m ≤ record/2.
+    pub periodicity_residual: f64,
+    /// Entries into contact in the last m periods (or in the whole window if not periodic).
+    pub impacts_n: u64,
+    /// Largest tip displacement in the window.
+    pub max_tip: f64,
+    /// Relative energy imbalance over the whole run.
+    pub energy_imbalance: f64,
+    /// Wall time of the simulation.
+    pub wall_seconds: f64,
+}
+
+/// Builds the paper's forced model from CLI units, validating every input.
+pub fn model(args: &Args) -> Result<GalerkinModel, ParameterError> {
+    error::count_in_range("--modes (N)", args.modes, galerkin::MAX_MODES)?;
+    error::finite_non_negative("--stop-stiffness (k/k₁)", args.stop_stiffness)?;
+    error::finite("--gap (d₀)", args.gap)?;
+    error::finite_positive("--zeta1 (ζ₁)", args.zeta1)?;
+    error::finite_positive("--omega (ω/(β₁⁻)²)", args.omega)?;
+    if args.periods == 0 && args.record == 0 {
+        return Err(ParameterError::new(
+            "--periods/--record",
+            0,
+            "at least one period in all",
+        ));
+    }
+    let p = GalerkinParams::new(
+        args.modes,
+        args.stop_stiffness * galerkin::first_modal_stiffness(),
+    )
+    .with_gap(args.gap)
+    .with_zeta1(args.zeta1)
+    .with_forcing(Forcing::paper(args.omega * galerkin::first_frequency()));
+    GalerkinModel::new(p)
+}
+
+/// The smallest m ≤ max_m with ‖x_last − x_{last−m}‖∞ < tol, and the best residual.
+pub fn detect_period(strobe: &[DVector<f64>], tol: f64, max_m: usize) -> (Option<u64>, f64) {
+    let last = match strobe.last() {
+        Some(x) => x,
+        None => return (None, f64::INFINITY),
+    };
+    let mut best = f64::INFINITY;
+    for m in 1..=max_m.min(strobe.len() - 1) {
+        let r = (last - &strobe[strobe.len() - 1 - m]).amax();
+        best = best.min(r);
+        if r < tol {
+            return (Some(m as u64), r);
+        }
+    }
+    (None, best)
+}
+
+/// Runs the command.
+pub fn run(args: &Args) -> Result<Report, Error> {
+    let model = model(args)?;
+    let started = Instant::now();
+    let sim = Simulator::new(model)?;
+    let n2 = 2 * sim.model.modes();
+    let rest = DVector::zeros(n2);
+    let energy_only = Observe {
+        energy: true,
+        ..Default::default()
+    };
+    let (x, transient) = sim.run(&rest, args.periods, energy_only);
+    let start = Clock {
+        period: sim.period(),
+        cycles: args.periods as i64,
+        offset: 0.0,
+    };
+    let observe = Observe {
+        events: true,
+        strobe: true,
+        dense_per_period: 4000,
+        energy: true,
+        ..Default::default()
+    };
+    let (_, window) = sim.run_from(&x, start, args.record, observe);
+    let wall_seconds = started.elapsed().as_secs_f64();
+    let strobe: Vec<DVector<f64>> = window.strobe.iter().map(|(_, x)| x.clone()).collect();
+    let (period_m, periodicity_residual) =
+        detect_period(&strobe, PERIODIC_TOLERANCE, (args.record / 2) as usize);
+    let last_cycle = start.cycles + args.record as i64;
+    let from_cycle = last_cycle - period_m.unwrap_or(args.record) as i64;
+    let impacts_n = window
+        .events
+        .iter()
+        .filter(|e| e.entering && !e.grazing && e.clock.cycles >= from_cycle)
+        .count() as u64;
+    let max_tip = window
+        .dense
+        .iter()
+        .map(|p| p.1)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let (a, b) = (
+        transient.energy.unwrap_or_default(),
+        window.energy.unwrap_or_default(),
+    );
+    let total = EnergyBudget {
+        initial: a.initial,
+        last: b.last,
+        work: a.work + b.work,
+        dissipated: a.dissipated + b.dissipated,
+    };
+    Ok(Report {
+        args: args.clone(),
+        events: window.events,
+        period_m,
+        periodicity_residual,
+        impacts_n,
+        max_tip,
+        energy_imbalance: total.relative_imbalance(),
+        wall_seconds,
+    })
+}
+
+impl Report {
+    /// The JSON form (keys as in the CLI's documentation).
+    pub fn to_json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "modes": self.args.modes,
+            "stop_stiffness_over_k1": self.args.stop_stiffness,
+            "gap": self.args.gap,
+            "zeta1": self.args.zeta1,
+            "omega_over_w1": self.args.omega,
+            "periods": self.args.periods,
+            "record": self.args.record,
+            "period_m": self.period_m,
+            "impacts_n": self.impacts_n,
+            "periodicity_residual": self.periodicity_residual,
+            "max_tip": self.max_tip,
+            "energy_imbalance": self.energy_imbalance,
+            "wall_seconds": self.wall_seconds,
+            "events": self.events.iter().map(|e| serde_json::json!({
+                "time": e.time,
+                "cycle": e.clock.cycles,
+                "entering": e.entering,
+                "grazing": e.grazing,
+                "tip_velocity": e.tip_velocity,
+            })).collect::<Vec<_>>(),
+        })
+    }
+
+    /// The text form.
+    pub fn to_text(&self) -> String {
+        let mut s = String::new();
+        s.push_str("contact events in the recorded window (t, direction, tip velocity):\n");
+        for e in &self.events {
+            let dir = match (e.grazing, e.entering) {
+                (true, _) => "graze",
+                (false, true) => "enter",
+                (false, false) => "leave",
+            };
+            s.push_str(&format!(
+                "  t = {:>16.10}  {dir:<5}  v = {:+.6e}\n",
+                e.time, e.tip_velocity
+            ));
+        }
+        match self.period_m {
+            Some(m) => s.push_str(&format!(
+                "orbit: ({m}, {}) — period {m}, {} contacts per period (residual {:.1e})\n",
+                self.impacts_n, self.impacts_n, self.periodicity_residual
+            )),
+            None => s.push_str(&format!(
+                "orbit: not periodic within {} periods (best residual {:.1e}); {} contacts recorded\n",
+                self.args.record / 2,
+                self.periodicity_residual,
+                self.impacts_n
+            )),
+        }
+        s.push_str(&format!("max tip displacement: {:.8}\n", self.max_tip));
+        s.push_str(&format!(
+            "energy imbalance: {:.2e}\n",
+            self.energy_imbalance
+        ));
+        s.push_str(&format!("wall time: {:.4} s\n", self.wall_seconds));
+        s
+    }
+}

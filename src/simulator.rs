@@ -1,0 +1,561 @@
+//! Exact piecewise-linear simulation of the N-mode bilinear model (§5.1–5.2, eqs 34–36)
+//! with certified switching times.
+//!
+//! Within a region the solution is exact ([`crate::flow`]). The tip gap
+//! g(s) = ±(φ(1)ᵀη − d₀) (negative while the region holds) is then a sum of exponentials
+//! plus a harmonic, g(s) = Re(P e^{iω s}) + Σ_k Re(a_k e^{λ_k s}) + const, so for every
+//! s' ≥ s its second derivative is bounded by
+//!
+//! ```text
+//! M(s) = ω²|P| + Σ_k |a_k| |λ_k|² e^{Re λ_k s}     (Re λ_k ≤ 0).
+//! ```
+//!
+//! **Certified advancement.** From s with g < 0, g(s + h) ≤ g + ġh + Mh²/2 < 0 for
+//! h < h* = (−ġ + √(ġ² − 2Mg))/M: no root can hide in [s, s + h*). When ġ − M·2h* > 0, g is
+//! increasing on [s, s + 2h*] and one evaluation at s + 2h* decides whether the unique root
+//! there exists; it is then polished by Brent's method to round-off. The paper instead
+//! brackets extrema by golden-section search (§5.2), which has no such guarantee.
+//!
+//! **Resolution.** Steps are never shorter than `h_min` = 1e-13 of a forcing period, so a
+//! contact whose penetration is below M·h_min²/2 (≈ 1e-26·M) may be passed over; every
+//! deeper one is found. A touch with zero normal velocity is recorded as a grazing event
+//! and does not switch the region.
+//!
+//! **Time.** t = cycles·T + offset with offset ∈ [0, T): the forcing phase ω·offset never
+//! loses precision over long runs.
+
+use crate::flow::{FlowError, RegionFlow};
+use crate::galerkin::{GalerkinModel, Region};
+use crate::numerics::brent;
+use nalgebra::DVector;
+use num_complex::Complex64;
+
+/// Shortest certified step, as a fraction of the forcing period.
+const H_MIN_FRACTION: f64 = 1e-13;
+
+/// A point in time: t = cycles·period + offset.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Clock {
+    /// T = 2π/ω (or 1 without forcing).
+    pub period: f64,
+    /// Whole periods elapsed.
+    pub cycles: i64,
+    /// Time since the start of the current period, in [0, T).
+    pub offset: f64,
+}
+
+impl Clock {
+    /// t.
+    pub fn time(&self) -> f64 {
+        self.cycles as f64 * self.period + self.offset
+    }
+
+    fn advance(&mut self, s: f64) {
+        self.offset += s;
+        while self.offset >= self.period {
+            self.offset -= self.period;
+            self.cycles += 1;
+        }
+    }
+}
+
+/// A switching event.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct Event {
+    /// When.
+    pub clock: Clock,
+    /// t.
+    pub time: f64,
+    /// Entering contact (`true`) or leaving it.
+    pub entering: bool,
+    /// A grazing touch (zero normal velocity): recorded, no switch.
+    pub grazing: bool,
+    /// Tip velocity φ(1)ᵀη̇ at the event.
+    pub tip_velocity: f64,
+    /// The state [η; η̇], if asked for.
+    pub state: Option<Vec<f64>>,
+}
+
+/// What to record. Nothing is computed that is not asked for.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Observe {
+    /// Switching events.
+    pub events: bool,
+    /// The full state at each event.
+    pub event_states: bool,
+    /// The state at every period boundary (ωt = 0 mod 2π).
+    pub strobe: bool,
+    /// Samples of (t, tip displacement, tip velocity, region) per period (0: none).
+    pub dense_per_period: usize,
+    /// The energy budget.
+    pub energy: bool,
+}
+
+/// Energy accounting (kinetic + modal strain + stop energy; forcing work; dissipation).
+#[derive(Debug, Clone, Copy, Default, serde::Serialize)]
+pub struct EnergyBudget {
+    /// Stored energy at the start.
+    pub initial: f64,
+    /// Stored energy at the end.
+    pub last: f64,
+    /// Work done by the forcing, ∫ Fᵀη̇ dt (exact per segment).
+    pub work: f64,
+    /// Dissipated energy, ∫ η̇ᵀCη̇ dt (exact per segment).
+    pub dissipated: f64,
+}
+
+impl EnergyBudget {
+    /// |ΔE − W + D| / max(|W|, D, E_initial, E_last): the part of the energy flow that is
+    /// not accounted for.
+    pub fn relative_imbalance(&self) -> f64 {
+        let scale = self
+            .work
+            .abs()
+            .max(self.dissipated)
+            .max(self.initial)
+            .max(self.last);
+        if scale == 0.0 {
+            0.0
+        } else {
+            (self.last - self.initial - self.work + self.dissipated).abs() / scale
+        }
+    }
+}
+
+/// Work counters.
+#[derive(Debug, Clone, Copy, Default, serde::Serialize)]
+pub struct Stats {
+    /// Region segments propagated.
+    pub segments: u64,
+    /// Evaluations of the switching function.
+    pub evaluations: u64,
+    /// Certified advancement steps.
+    pub steps: u64,
+}
+
+/// What a run produced.
+#[derive(Debug, Clone, Default)]
+pub struct Trace {
+    /// Switching events (if observed).
+    pub events: Vec<Event>,
+    /// States at period boundaries (if observed), with their cycle numbers.
+    pub strobe: Vec<(i64, DVector<f64>)>,
+    /// (t, tip displacement, tip velocity, in contact) samples (if observed).
+    pub dense: Vec<(f64, f64, f64, bool)>,
+    /// The energy budget (if observed).
+    pub energy: Option<EnergyBudget>,
+    /// Work counters.
+    pub stats: Stats,
+}
+
+/// Simulation settings.
+#[derive(Debug, Clone, Copy)]
+pub struct Settings {
+    /// Relative tolerance of Brent's polish of a switching time (default 1e-15).
+    pub root_tolerance: f64,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Self {
+            root_tolerance: 1e-15,
+        }
+    }
+}
+
+/// The simulator: the model and its two exact region flows.
+#[derive(Debug, Clone)]
+pub struct Simulator {
+    /// The model.
+    pub model: GalerkinModel,
+    /// The − region flow.
+    pub free: RegionFlow,
+    /// The + region flow.
+    pub contact: RegionFlow,
+    /// Settings.
+    pub settings: Settings,
+}
+
+/// The homogeneous and forced tip signal of one segment.
+struct Segment<'a> {
+    flow: &'a RegionFlow,
+    w: DVector<Complex64>,
+    phase0: f64,
+    /// +1 in free flight (g = d − d₀), −1 in contact (g = d₀ − d).
+    sign: f64,
+    gap: f64,
+    /// (a_k = weight·tip_k·w_k, λ_k) over the half spectrum.
+    terms: Vec<(Complex64, Complex64)>,
+    forced_bound: f64,
+}
+
+impl<'a> Segment<'a> {
+    fn new(flow: &'a RegionFlow, x: &DVector<f64>, phase0: f64, gap: f64) -> Self {
+        let w = flow.coefficients(x, phase0);
+        let terms = flow
+            .half
+            .iter()
+            .map(|&(k, weight)| (flow.tip_of_mode[k] * w[k] * weight, flow.lambda[k]))
+            .collect();
+        Self {
+            flow,
+            w,
+            phase0,
+            sign: if flow.region == Region::Free {
+                1.0
+            } else {
+                -1.0
+            },
+            gap,
+            terms,
+            forced_bound: flow.omega * flow.omega * flow.tip_forced.norm(),
+        }
+    }
+
+    /// Tip displacement and velocity at s.
+    fn tip(&self, s: f64) -> (f64, f64) {
+        let f = self.flow;
+        let e = Complex64::from_polar(1.0, self.phase0 + f.omega * s);
+        let pf = f.tip_forced * e;
+        let (mut d, mut v) = (pf.re + f.tip_static, (pf * Complex64::new(0.0, f.omega)).re);
+        for &(a, l) in &self.terms {
+            let z = a * (l * s).exp();
+            d += z.re;
+            v += (z * l).re;
+        }
+        (d, v)
+    }
+
+    /// g and ġ.
+    fn g(&self, s: f64) -> (f64, f64) {
+        let (d, v) = self.tip(s);
+        (self.sign * (d - self.gap), self.sign * v)
+    }
+
+    /// M(s): a bound on |g̈| on [s, ∞).
+    fn accel_bound(&self, s: f64) -> f64 {
+        self.forced_bound
+            + self
+                .terms
+                .iter()
+                .map(|&(a, l)| a.norm() * l.norm_sqr() * (l.re.min(0.0) * s).exp())
+                .sum::<f64>()
+    }
+
+    fn state(&self, s: f64) -> DVector<f64> {
+        self.flow.state(&self.w, self.phase0, s)
+    }
+
+    /// The first s in (0, s_max] with g(s) = 0, certified (see the module doc).
+    fn first_crossing(
+        &self,
+        s_max: f64,
+        h_min: f64,
+        rel_tol: f64,
+        stats: &mut Stats,
+    ) -> Option<f64> {
+        let mut s = 0.0;
+        let (mut g, mut gd) = self.g(0.0);
+        stats.evaluations += 1;
+        while s < s_max {
+            stats.steps += 1;
+            let m = self.accel_bound(s);
+            let g_neg = g.min(0.0);
+            let h_star = if m > 0.0 {
+                (-gd + (gd * gd - 2.0 * m * g_neg).sqrt()) / m
+            } else if gd > 0.0 {
+                -g_neg / gd
+            } else {
+                f64::INFINITY
+            };
+            let h = h_star.max(h_min).min(s_max - s);
+            // Monotone probe: g increasing on [s, s + 2h] decides the root there at once.
+            let probe = (2.0 * h).min(s_max - s);
+            if gd - m * probe > 0.0 && probe > h {
+                let (gp, gdp) = self.g(s + probe);
+                stats.evaluations += 1;
+                if gp >= 0.0 {
+                    return Some(self.polish(s, s + probe, rel_tol, stats));
+                }
+                s += probe;
+                (g, gd) = (gp, gdp);
+                continue;
+            }
+            let (gn, gdn) = self.g(s + h);
+            stats.evaluations += 1;
+            if gn >= 0.0 && s + h > 0.0 {
+                // only reachable through the h_min floor or round-off at a tangency
+                return Some(self.polish(s, s + h, rel_tol, stats));
+            }
+            s += h;
+            (g, gd) = (gn, gdn);
+        }
+        None
+    }
+
+    fn polish(&self, a: f64, b: f64, rel_tol: f64, stats: &mut Stats) -> f64 {
+        let mut count = 0;
+        let root = brent(
+            |s| {
+                count += 1;
+                self.g(s).0
+            },
+            a,
+            b,
+            rel_tol,
+        )
+        .unwrap_or(b);
+        stats.evaluations += count;
+        root
+    }
+}
+
+impl Simulator {
+    /// Builds both region flows.
+    pub fn new(model: GalerkinModel) -> Result<Self, FlowError> {
+        Ok(Self {
+            free: RegionFlow::new(&model, Region::Free)?,
+            contact: RegionFlow::new(&model, Region::Contact)?,
+            model,
+            settings: Settings::default(),
+        })
+    }
+
+    /// The forcing period T (1 without forcing).
+    pub fn period(&self) -> f64 {
+        let omega = self.free.omega;
+        if omega > 0.0 {
+            2.0 * std::f64::consts::PI / omega
+        } else {
+            1.0
+        }
+    }
+
+    fn flow(&self, region: Region) -> &RegionFlow {
+        match region {
+            Region::Free => &self.free,
+            Region::Contact => &self.contact,
+        }
+    }
+
+    /// Stored energy: ½|η̇|² + ½ηᵀK⁻η + (k/8)(φ(1)ᵀη − d₀)₊².
+    pub fn stored_energy(&self, x: &DVector<f64>) -> f64 {
+        let n = self.model.modes();
+        let (eta, vel) = (x.rows(0, n), x.rows(n, n));
+        let strain: f64 = (0..n)
+            .map(|j| self.model.modal_stiffness[j] * eta[j] * eta[j])
+            .sum();
+        let pen = (self.model.tip.dot(&eta) - self.model.params.gap).max(0.0);
+        0.5 * vel.norm_squared() + 0.5 * strain + self.model.params.stop_stiffness / 8.0 * pen * pen
+    }
+
+    /// Runs `periods` forcing periods from state x at the start of cycle 0 (t = 0).
+    pub fn run(&self, x0: &DVector<f64>, periods: u64, observe: Observe) -> (DVector<f64>, Trace) {
+        self.run_from(
+            x0,
+            Clock {
+                period: self.period(),
+                cycles: 0,
+                offset: 0.0,
+            },
+            periods,
+            observe,
+        )
+    }
+
+    /// Runs from `start` until `periods` whole periods later (ending at a period boundary).
+    pub fn run_from(
+        &self,
+        x0: &DVector<f64>,
+        start: Clock,
+        periods: u64,
+        observe: Observe,
+    ) -> (DVector<f64>, Trace) {
+        let period = self.period();
+        let omega = self.free.omega;
+        let gap = self.model.params.gap;
+        let h_min = H_MIN_FRACTION * period;
+        let end_cycle = start.cycles + periods as i64;
+        let mut trace = Trace::default();
+        let mut clock = start;
+        let mut x = x0.clone();
+        let mut region = self.initial_region(&x);
+        let mut budget = observe.energy.then(|| EnergyBudget {
+            initial: self.stored_energy(&x),
+            ..Default::default()
+        });
+        if observe.strobe {
+            trace.strobe.push((clock.cycles, x.clone()));
+        }
+        while clock.cycles < end_cycle {
+            let flow = self.flow(region);
+            let seg = Segment::new(flow, &x, omega * clock.offset, gap);
+            trace.stats.segments += 1;
+            let horizon = if observe.strobe || observe.dense_per_period > 0 {
+                period - clock.offset
+            } else {
+                (end_cycle - clock.cycles) as f64 * period - clock.offset
+            };
+            let crossing = seg.first_crossing(
+                horizon,
+                h_min,
+                self.settings.root_tolerance,
+                &mut trace.stats,
+            );
+            let s_end = crossing.unwrap_or(horizon);
+            if observe.dense_per_period > 0 {
+                self.sample_dense(
+                    &seg,
+                    &clock,
+                    s_end,
+                    observe.dense_per_period,
+                    region,
+                    &mut trace,
+                );
+            }
+            if let Some(b) = budget.as_mut() {
+                let (w, d) = segment_energy(&seg, &self.model, s_end);
+                b.work += w;
+                b.dissipated += d;
+            }
+            x = seg.state(s_end);
+            match crossing {
+                Some(s) => {
+                    clock.advance(s);
+                    let (_, v) = seg.tip(s);
+                    // A touch whose normal velocity vanishes to round-off (relative to the
+                    // tip velocity scale) does not enter the other region.
+                    let vscale =
+                        seg.accel_bound(0.0).sqrt() * (seg.terms.len() as f64).sqrt() * 1e-14;
+                    let grazing = v.abs() <= vscale;
+                    if observe.events {
+                        trace.events.push(Event {
+                            clock,
+                            time: clock.time(),
+                            entering: region == Region::Free,
+                            grazing,
+                            tip_velocity: v,
+                            state: observe.event_states.then(|| x.as_slice().to_vec()),
+                        });
+                    }
+                    if !grazing {
+                        region = match region {
+                            Region::Free => Region::Contact,
+                            Region::Contact => Region::Free,
+                        };
+                    }
+                }
+                None => {
+                    clock.cycles += ((clock.offset + s_end) / period).round() as i64;
+                    clock.offset = 0.0;
+                    if observe.strobe {
+                        trace.strobe.push((clock.cycles, x.clone()));
+                    }
+                }
+            }
+        }
+        if let Some(mut b) = budget {
+            b.last = self.stored_energy(&x);
+            trace.energy = Some(b);
+        }
+        (x, trace)
+    }
+
+    /// The region a state starts in: contact if d > d₀, or d = d₀ moving inward.
+    pub fn initial_region(&self, x: &DVector<f64>) -> Region {
+        let n = self.model.modes();
+        let d = self.model.tip.dot(&x.rows(0, n)) - self.model.params.gap;
+        let v = self.model.tip.dot(&x.rows(n, n));
+        if d > 0.0 || (d == 0.0 && v > 0.0) {
+            Region::Contact
+        } else {
+            Region::Free
+        }
+    }
+
+    fn sample_dense(
+        &self,
+        seg: &Segment,
+        clock: &Clock,
+        s_end: f64,
+        per_period: usize,
+        region: Region,
+        trace: &mut Trace,
+    ) {
+        let dt = self.period() / per_period as f64;
+        // samples on the global grid t = j·dt that fall in [offset, offset + s_end)
+        let first = (clock.offset / dt).ceil() as i64;
+        let mut j = first;
+        loop {
+            let s = j as f64 * dt - clock.offset;
+            if s >= s_end {
+                break;
+            }
+            let (d, v) = seg.tip(s);
+            trace
+                .dense
+                .push((clock.time() + s, d, v, region == Region::Contact));
+            j += 1;
+        }
+    }
+}
+
+/// ∫₀^S e^{μs} ds, accurate also when |μS| is small.
+fn exp_integral(mu: Complex64, s: f64) -> Complex64 {
+    let z = mu * s;
+    if z.norm() < 0.1 {
+        // S·(1 + z/2 + z²/6 + …), 12 terms: error < 0.1¹²/12! ≈ 2e-21
+        let mut term = Complex64::new(s, 0.0);
+        let mut sum = term;
+        for n in 2..14 {
+            term *= z / n as f64;
+            sum += term;
+        }
+        sum
+    } else {
+        (z.exp() - 1.0) / mu
+    }
+}
+
+/// Exact forcing work and dissipation over [0, S] of a segment: η̇(s) is a finite sum of
+/// complex exponentials u_m e^{μ_m s}, so ∫ η̇ᵀCη̇ and ∫ fᵀη̇ cos ωt are sums of
+/// ∫ e^{(μ_m + μ_n)s} ds in closed form.
+fn segment_energy(seg: &Segment, model: &GalerkinModel, s_end: f64) -> (f64, f64) {
+    let f = seg.flow;
+    let n = f.modes;
+    // velocity components u_m (length N) and exponents μ_m
+    let mut us: Vec<(Vec<Complex64>, Complex64)> = Vec::with_capacity(2 * n + 2);
+    for k in 0..2 * n {
+        let u: Vec<Complex64> = (0..n).map(|i| f.v[(n + i, k)] * seg.w[k]).collect();
+        us.push((u, f.lambda[k]));
+    }
+    if f.omega > 0.0 {
+        let e = Complex64::from_polar(0.5, seg.phase0);
+        let u: Vec<Complex64> = (0..n).map(|i| f.forced[n + i] * e).collect();
+        let uc: Vec<Complex64> = u.iter().map(|z| z.conj()).collect();
+        us.push((u, Complex64::new(0.0, f.omega)));
+        us.push((uc, Complex64::new(0.0, -f.omega)));
+    }
+    let c = &model.damping;
+    let mut dissipated = Complex64::new(0.0, 0.0);
+    for (a, (ua, ma)) in us.iter().enumerate() {
+        for (ub, mb) in us.iter().skip(a) {
+            let dot: Complex64 = (0..n).map(|i| ua[i] * ub[i] * c[i]).sum();
+            let weight = if std::ptr::eq(ua, ub) { 1.0 } else { 2.0 };
+            dissipated += dot * exp_integral(ma + mb, s_end) * weight;
+        }
+    }
+    let mut work = Complex64::new(0.0, 0.0);
+    if f.omega > 0.0 {
+        let iw = Complex64::new(0.0, f.omega);
+        let (ep, em) = (
+            Complex64::from_polar(0.5, seg.phase0),
+            Complex64::from_polar(0.5, -seg.phase0),
+        );
+        for (u, mu) in &us {
+            let fu: Complex64 = (0..n).map(|i| u[i] * model.forcing_amplitude[i]).sum();
+            work += fu * (ep * exp_integral(mu + iw, s_end) + em * exp_integral(mu - iw, s_end));
+        }
+    }
+    (work.re, dissipated.re)
+}
