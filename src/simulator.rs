@@ -257,6 +257,8 @@ impl<'a> Segment<'a> {
         let mut s = 0.0;
         let (mut g, mut gd) = self.g(0.0);
         stats.evaluations += 1;
+        // The last point known to have g < 0 strictly (the start may sit on the surface).
+        let mut last_negative = (g < 0.0).then_some(0.0);
         while s < s_max {
             stats.steps += 1;
             let m = self.accel_bound(s);
@@ -271,24 +273,39 @@ impl<'a> Segment<'a> {
             let h = h_star.max(h_min).min(s_max - s);
             // Monotone probe: g increasing on [s, s + 2h] decides the root there at once.
             let probe = (2.0 * h).min(s_max - s);
-            if gd - m * probe > 0.0 && probe > h {
-                let (gp, gdp) = self.g(s + probe);
-                stats.evaluations += 1;
-                if gp >= 0.0 {
-                    return Some(self.polish(s, s + probe, rel_tol, stats));
-                }
-                s += probe;
-                (g, gd) = (gp, gdp);
-                continue;
-            }
-            let (gn, gdn) = self.g(s + h);
+            let step = if gd - m * probe > 0.0 && probe > h {
+                probe
+            } else {
+                h
+            };
+            let (gn, gdn) = self.g(s + step);
             stats.evaluations += 1;
-            if gn >= 0.0 && s + h > 0.0 {
-                // only reachable through the h_min floor or round-off at a tangency
-                return Some(self.polish(s, s + h, rel_tol, stats));
+            if gn >= 0.0 {
+                // A root in (s, s + step]: unique if the probe's monotonicity held; otherwise
+                // only reachable at the h_min floor or at a tangency within round-off.
+                let lo = match last_negative {
+                    Some(lo) => lo,
+                    None => self.negative_point(s, step, stats)?,
+                };
+                return Some(self.polish(lo, s + step, rel_tol, stats));
             }
-            s += h;
+            s += step;
             (g, gd) = (gn, gdn);
+            last_negative = Some(s);
+        }
+        None
+    }
+
+    /// From a start on the surface (g = 0, ġ < 0), a point in (s, s + step) with g < 0:
+    /// the quadratic bound makes g(s + h*/2) < 0 for the first certified step h*.
+    fn negative_point(&self, s: f64, step: f64, stats: &mut Stats) -> Option<f64> {
+        let mut h = step / 2.0;
+        for _ in 0..60 {
+            stats.evaluations += 1;
+            if self.g(s + h).0 < 0.0 {
+                return Some(s + h);
+            }
+            h /= 2.0;
         }
         None
     }
@@ -391,11 +408,9 @@ impl Simulator {
             let flow = self.flow(region);
             let seg = Segment::new(flow, &x, omega * clock.offset, gap);
             trace.stats.segments += 1;
-            let horizon = if observe.strobe || observe.dense_per_period > 0 {
-                period - clock.offset
-            } else {
-                (end_cycle - clock.cycles) as f64 * period - clock.offset
-            };
+            // Segments end at the next period boundary at the latest, so the forcing phase
+            // argument ω·(offset + s) never exceeds 2π (exact phase over long runs).
+            let horizon = period - clock.offset;
             let crossing = seg.first_crossing(
                 horizon,
                 h_min,

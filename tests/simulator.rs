@@ -1,0 +1,372 @@
+//! Code verification of the exact simulator and of the independent reference integrator:
+//! closed forms, certified contact detection, energy balance, cross-verification.
+
+use impacting_cantilever::galerkin::{self, Forcing, GalerkinModel, GalerkinParams};
+use impacting_cantilever::reference::{self, Tolerances};
+use impacting_cantilever::simulator::{Observe, Simulator};
+use nalgebra::DVector;
+use std::f64::consts::PI;
+
+fn k1() -> f64 {
+    galerkin::first_modal_stiffness()
+}
+fn w1() -> f64 {
+    galerkin::first_frequency()
+}
+
+/// The Figure 4 model: k = 100 k₁, ζ₁ = 0.01, d₀ = 0, ω = 2(β₁⁻)², eq (37) forcing.
+fn fig4(n: usize) -> GalerkinModel {
+    GalerkinModel::new(
+        GalerkinParams::new(n, 100.0 * k1())
+            .with_zeta1(0.01)
+            .with_forcing(Forcing::paper(2.0 * w1())),
+    )
+    .unwrap()
+}
+
+/// Closed form of ẍ + cẋ + kx = F cos ωt, underdamped, from (x0, v0).
+fn oscillator(k: f64, c: f64, f: f64, omega: f64, x0: f64, v0: f64, t: f64) -> (f64, f64) {
+    let den = (k - omega * omega).powi(2) + (c * omega).powi(2);
+    let (pr, pi) = (f * (k - omega * omega) / den, f * c * omega / den);
+    // x_p = pr cos ωt + pi sin ωt
+    let xp = |t: f64| pr * (omega * t).cos() + pi * (omega * t).sin();
+    let vp = |t: f64| omega * (-pr * (omega * t).sin() + pi * (omega * t).cos());
+    let wd = (k - c * c / 4.0).sqrt();
+    let a = x0 - xp(0.0);
+    let b = (v0 - vp(0.0) + c / 2.0 * a) / wd;
+    let e = (-c * t / 2.0).exp();
+    let (s, co) = (wd * t).sin_cos();
+    let xh = e * (a * co + b * s);
+    let vh = e * (-c / 2.0 * (a * co + b * s) + wd * (-a * s + b * co));
+    (xp(t) + xh, vp(t) + vh)
+}
+
+#[test]
+fn reference_integrator_matches_the_closed_form_forced_oscillator() {
+    // One mode, stop far away (gap 1e6): ẍ + C₁₁ẋ + k₁x = f₁ cos ωt.
+    let m = GalerkinModel::new(
+        GalerkinParams::new(1, 100.0 * k1())
+            .with_gap(1e6)
+            .with_zeta1(0.05)
+            .with_forcing(Forcing::paper(1.3 * w1())),
+    )
+    .unwrap();
+    let x0 = DVector::from_vec(vec![0.2, -0.4]);
+    let t = 10.0;
+    let (xe, ve) = oscillator(
+        k1(),
+        m.damping[0],
+        m.forcing_amplitude[0],
+        1.3 * w1(),
+        0.2,
+        -0.4,
+        t,
+    );
+    let mut errors = Vec::new();
+    for rtol in [1e-6, 1e-8, 1e-10, 1e-12] {
+        let r = reference::integrate(
+            &m,
+            &x0,
+            t,
+            Tolerances {
+                rtol,
+                atol: rtol * 1e-2,
+            },
+        );
+        let err = (r.state[0] - xe).abs().max((r.state[1] - ve).abs() / w1());
+        errors.push(err);
+    }
+    // the error follows the tolerance (a 5th-order method under step control) and reaches
+    // 1e-10 at rtol = 1e-12 (global error ~ a few × 10 steps' worth of local error)
+    assert!(errors[3] < 1e-10, "{errors:?}");
+    for w in errors.windows(2) {
+        assert!(
+            w[1] < w[0] * 0.2,
+            "error does not fall with rtol: {errors:?}"
+        );
+    }
+}
+
+#[test]
+fn exact_simulator_matches_the_closed_form_forced_oscillator() {
+    let m = GalerkinModel::new(
+        GalerkinParams::new(1, 0.0)
+            .with_gap(1e6)
+            .with_zeta1(0.05)
+            .with_forcing(Forcing::paper(1.3 * w1())),
+    )
+    .unwrap();
+    let sim = Simulator::new(m.clone()).unwrap();
+    let x0 = DVector::from_vec(vec![0.2, -0.4]);
+    let (x, _) = sim.run(&x0, 7, Observe::default());
+    let t = 7.0 * sim.period();
+    let (xe, ve) = oscillator(
+        k1(),
+        m.damping[0],
+        m.forcing_amplitude[0],
+        1.3 * w1(),
+        0.2,
+        -0.4,
+        t,
+    );
+    // exact method: round-off only (measured ~1e-15)
+    assert!((x[0] - xe).abs() < 1e-13 && (x[1] - ve).abs() < 1e-13 * w1());
+}
+
+#[test]
+fn contact_passage_times_match_the_closed_form() {
+    // Undamped, unforced single mode from the surface with upward velocity: contact lasts
+    // π/√(k₁ + k), free flight π/√k₁, alternately.
+    let k = 100.0 * k1();
+    let m = GalerkinModel::new(GalerkinParams::new(1, k)).unwrap();
+    let sim = Simulator::new(m.clone()).unwrap();
+    let x0 = DVector::from_vec(vec![0.0, 1.0]);
+    let observe = Observe {
+        events: true,
+        ..Default::default()
+    };
+    let (_, trace) = sim.run(&x0, 3, observe);
+    let (tp, tm) = (PI / (k1() + k).sqrt(), PI / k1().sqrt());
+    let mut expected = 0.0;
+    assert!(trace.events.len() >= 4);
+    for (i, e) in trace.events.iter().enumerate() {
+        expected += if i % 2 == 0 { tp } else { tm };
+        assert_eq!(e.entering, i % 2 == 1);
+        // the issue's 1e-12 relative in time
+        assert!(
+            (e.time - expected).abs() < 1e-12 * expected,
+            "event {i}: {} vs {expected}",
+            e.time
+        );
+    }
+    let r = reference::integrate(
+        &m,
+        &x0,
+        3.0,
+        Tolerances {
+            rtol: 1e-12,
+            atol: 1e-14,
+        },
+    );
+    assert_eq!(r.events.len(), trace.events.len());
+    for (a, b) in r.events.iter().zip(&trace.events) {
+        // the reference's global error at rtol 1e-12 over ~30 passages
+        assert!((a.time - b.time).abs() < 1e-9);
+    }
+}
+
+#[test]
+fn energy_balance_over_1000_periods() {
+    // the issue: imbalance ≤ 1e-9 for N = 10 at k = 100 k₁ and for N = 40 at k = 1e5 k₁
+    let observe = Observe {
+        energy: true,
+        ..Default::default()
+    };
+    let sim = Simulator::new(fig4(10)).unwrap();
+    let (_, t) = sim.run(&DVector::zeros(20), 1000, observe);
+    let e = t.energy.unwrap();
+    assert!(e.dissipated > 0.0 && e.work > 0.0);
+    assert!(
+        e.relative_imbalance() < 1e-9,
+        "N=10: {:e}",
+        e.relative_imbalance()
+    );
+
+    let stiff = GalerkinModel::new(
+        GalerkinParams::new(40, 1e5 * k1())
+            .with_zeta1(0.01)
+            .with_forcing(Forcing::paper(2.0 * w1())),
+    )
+    .unwrap();
+    let sim = Simulator::new(stiff).unwrap();
+    let (_, t) = sim.run(&DVector::zeros(80), 1000, observe);
+    let e = t.energy.unwrap();
+    assert!(
+        e.relative_imbalance() < 1e-9,
+        "N=40: {:e}",
+        e.relative_imbalance()
+    );
+}
+
+#[test]
+fn cross_verification_with_the_reference_integrator_on_figure_4() {
+    // The issue: N = 1, 2, 3, 10, 50 periods from rest, the same event sequence, event
+    // times agreeing to 1e-8.
+    for n in [1, 2, 3, 10] {
+        let m = fig4(n);
+        let sim = Simulator::new(m.clone()).unwrap();
+        let x0 = DVector::zeros(2 * n);
+        let observe = Observe {
+            events: true,
+            ..Default::default()
+        };
+        let (x, trace) = sim.run(&x0, 50, observe);
+        let t_end = 50.0 * sim.period();
+        let r = reference::integrate(
+            &m,
+            &x0,
+            t_end,
+            Tolerances {
+                rtol: 1e-13,
+                atol: 1e-16,
+            },
+        );
+        assert_eq!(r.events.len(), trace.events.len(), "N={n}: event counts");
+        let mut worst: f64 = 0.0;
+        for (a, b) in r.events.iter().zip(&trace.events) {
+            assert_eq!(a.entering, b.entering, "N={n}: direction");
+            worst = worst.max((a.time - b.time).abs());
+        }
+        assert!(worst < 1e-8, "N={n}: worst event-time difference {worst:e}");
+        let scale = x.amax();
+        assert!(
+            (&r.state - &x).amax() < 1e-7 * scale.max(1e-3),
+            "N={n}: end state"
+        );
+    }
+}
+
+/// Crossings a naive detector finds: sign changes of d − d₀ between equally spaced samples.
+fn naive_crossings(samples: &[(f64, f64, f64, bool)], gap: f64) -> usize {
+    samples
+        .windows(2)
+        .filter(|w| (w[0].1 - gap).signum() != (w[1].1 - gap).signum())
+        .count()
+}
+
+#[test]
+fn near_grazing_contacts_are_found_and_a_naive_sampler_misses_them() {
+    // One undamped mode oscillating with tip amplitude A = 2a; the stop sits 1e-10·A below
+    // the crest, so each crest makes a contact of duration ≈ 2√(2e-10)/ω₁.
+    let a = 0.5;
+    for depth in [1e-6, 1e-8, 1e-10] {
+        let gap = 2.0 * a * (1.0 - depth);
+        let m = GalerkinModel::new(GalerkinParams::new(1, 100.0 * k1()).with_gap(gap)).unwrap();
+        let sim = Simulator::new(m).unwrap();
+        let x0 = DVector::from_vec(vec![0.0, a * w1()]);
+        let observe = Observe {
+            events: true,
+            dense_per_period: 1000,
+            ..Default::default()
+        };
+        // unforced: one "period" is one time unit; ω₁ ≈ 3.5, so 3 units hold ≥ 1 crest
+        let (_, trace) = sim.run(&x0, 3, observe);
+        // crests at t = (π/2 + 2πj)/ω₁ < 3
+        let crests = ((3.0 * w1() - PI / 2.0) / (2.0 * PI)).floor() as usize + 1;
+        assert_eq!(
+            trace.events.len(),
+            2 * crests,
+            "depth {depth}: enter and leave per crest"
+        );
+        assert!(trace.events.iter().all(|e| !e.grazing));
+        if depth <= 1e-8 {
+            assert_eq!(
+                naive_crossings(&trace.dense, gap),
+                0,
+                "the naive sampler misses them"
+            );
+        }
+    }
+}
+
+#[test]
+fn double_crossings_inside_one_fast_period_are_found() {
+    // Mode 1 at its crest (tip 0.9988) plus a mode-5 ripple (tip ±0.004, ω₅ ≈ 57 ω₁)
+    // starting in its trough: the tip rises above the stop at d₀ = 1 for a fraction of
+    // one mode-5 period and falls back. Sampling 20 times per unit time misses it.
+    let m = GalerkinModel::new(GalerkinParams::new(5, 1000.0 * k1()).with_gap(1.0)).unwrap();
+    let sim = Simulator::new(m.clone()).unwrap();
+    let w5 = m.beta[4].powi(2);
+    let mut x0 = DVector::zeros(10);
+    x0[0] = 0.4994;
+    x0[4] = -0.002;
+    let observe = Observe {
+        events: true,
+        dense_per_period: 20,
+        ..Default::default()
+    };
+    let (_, trace) = sim.run(&x0, 1, observe);
+    assert!(
+        trace.events.len() >= 2,
+        "found {} events",
+        trace.events.len()
+    );
+    let first_two = &trace.events[..2];
+    assert!(first_two[0].entering && !first_two[1].entering);
+    assert!(
+        first_two[1].time < 2.0 * PI / w5,
+        "both inside the first mode-5 period"
+    );
+    assert_eq!(
+        naive_crossings(&trace.dense[..3], 1.0),
+        0,
+        "the naive sampler misses them"
+    );
+    // the reference integrator, at tight tolerance, agrees on those times
+    let r = reference::integrate(
+        &m,
+        &x0,
+        first_two[1].time + 1e-3,
+        Tolerances {
+            rtol: 1e-12,
+            atol: 1e-15,
+        },
+    );
+    assert!(r.events.len() >= 2);
+    for (a, b) in r.events.iter().zip(first_two) {
+        assert!((a.time - b.time).abs() < 1e-9, "{} vs {}", a.time, b.time);
+    }
+}
+
+#[test]
+fn nothing_is_recorded_unless_asked() {
+    let sim = Simulator::new(fig4(3)).unwrap();
+    let (_, t) = sim.run(&DVector::zeros(6), 20, Observe::default());
+    assert!(t.events.is_empty() && t.strobe.is_empty() && t.dense.is_empty());
+    assert!(t.energy.is_none());
+    let events_only = Observe {
+        events: true,
+        ..Default::default()
+    };
+    let (_, t) = sim.run(&DVector::zeros(6), 20, events_only);
+    assert!(!t.events.is_empty() && t.events.iter().all(|e| e.state.is_none()));
+    assert!(t.strobe.is_empty() && t.dense.is_empty());
+}
+
+#[test]
+fn forcing_phase_stays_exact_over_long_runs() {
+    // Linear (stop out of reach), damped: after 10⁴ periods the transient is e^{-300}
+    // and the state at ωt = 0 mod 2π must be the particular solution x_p(0) to round-off.
+    let m = GalerkinModel::new(
+        GalerkinParams::new(3, 0.0)
+            .with_gap(1e6)
+            .with_zeta1(0.01)
+            .with_forcing(Forcing::paper(2.0 * w1())),
+    )
+    .unwrap();
+    let sim = Simulator::new(m).unwrap();
+    let (x, _) = sim.run(&DVector::zeros(6), 10_000, Observe::default());
+    let xp = sim.free.particular(0.0);
+    let err = (&x - &xp).amax() / xp.amax();
+    assert!(err < 1e-12, "relative error {err:e}");
+}
+
+#[test]
+fn chained_runs_equal_one_long_run() {
+    let sim = Simulator::new(fig4(3)).unwrap();
+    let x0 = DVector::zeros(6);
+    let (long, _) = sim.run(&x0, 40, Observe::default());
+    let mut x = x0;
+    let mut clock = impacting_cantilever::simulator::Clock {
+        period: sim.period(),
+        cycles: 0,
+        offset: 0.0,
+    };
+    for _ in 0..40 {
+        let (next, _) = sim.run_from(&x, clock, 1, Observe::default());
+        x = next;
+        clock.cycles += 1;
+    }
+    // the same exact flow split at period boundaries: round-off only
+    assert!((&x - &long).amax() < 1e-12 * long.amax());
+}
