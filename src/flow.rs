@@ -56,6 +56,9 @@ pub struct RegionFlow {
     pub v: DMatrix<Complex64>,
     /// V⁻¹.
     pub v_inv: DMatrix<Complex64>,
+    /// Real and imaginary parts of the rows of V⁻¹ at the half-spectrum indices, in the
+    /// order of `half`, contiguous: a segment's set-up is two real dot products per row.
+    pub v_inv_half: Vec<(Vec<f64>, Vec<f64>)>,
     /// X with (iωI − A)X = b̂: the complex amplitude of the forced response.
     pub forced: DVector<Complex64>,
     /// x_s: the static response to the stop preload.
@@ -118,7 +121,18 @@ impl RegionFlow {
         let tip_forced = (0..n).map(|i| forced[i] * model.tip[i]).sum();
         let tip_static = (0..n).map(|i| static_state[i] * model.tip[i]).sum();
         let half = conjugate_halves(&lambda);
+        let v_inv_half = half
+            .iter()
+            .map(|&(k, _)| {
+                let row = v_inv.row(k);
+                (
+                    row.iter().map(|z| z.re).collect(),
+                    row.iter().map(|z| z.im).collect(),
+                )
+            })
+            .collect();
         Ok(Self {
+            v_inv_half,
             region,
             modes: n,
             lambda,
@@ -153,13 +167,14 @@ impl RegionFlow {
         &self.v_inv * r
     }
 
-    /// The state s after a point with coefficients `w` and phase θ.
+    /// The state s after a point with coefficients `w` and phase θ (only the
+    /// half-spectrum entries of `w` are read; the others are their conjugates).
     pub fn state(&self, w: &DVector<Complex64>, phase: f64, s: f64) -> DVector<f64> {
         let mut x = self.particular(phase + self.omega * s);
         for &(k, weight) in &self.half {
             let c = w[k] * (self.lambda[k] * s).exp() * weight;
-            for i in 0..2 * self.modes {
-                x[i] += (self.v[(i, k)] * c).re;
+            for (xi, v) in x.iter_mut().zip(self.v.column(k).iter()) {
+                *xi += v.re * c.re - v.im * c.im;
             }
         }
         x

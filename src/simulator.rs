@@ -26,12 +26,14 @@
 
 use crate::flow::{FlowError, RegionFlow};
 use crate::galerkin::{GalerkinModel, Region};
-use crate::numerics::brent;
 use nalgebra::DVector;
 use num_complex::Complex64;
 
 /// Shortest certified step, as a fraction of the forcing period.
 const H_MIN_FRACTION: f64 = 1e-13;
+
+/// Longest segment without a restart, in forcing periods.
+const MAX_SEGMENT_PERIODS: i64 = 16;
 
 /// A point in time: t = cycles·period + offset.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -131,6 +133,10 @@ pub struct Stats {
     pub evaluations: u64,
     /// Certified advancement steps.
     pub steps: u64,
+    /// Of those, steps taken in contact.
+    pub contact_steps: u64,
+    /// Evaluations spent polishing switching times.
+    pub polish_evaluations: u64,
 }
 
 /// What a run produced.
@@ -179,24 +185,67 @@ pub struct Simulator {
 /// The homogeneous and forced tip signal of one segment.
 struct Segment<'a> {
     flow: &'a RegionFlow,
+    /// Homogeneous coefficients, only at the half-spectrum indices (the rest are their
+    /// conjugates); zero elsewhere.
     w: DVector<Complex64>,
     phase0: f64,
     /// +1 in free flight (g = d − d₀), −1 in contact (g = d₀ − d).
     sign: f64,
     gap: f64,
-    /// (a_k = weight·tip_k·w_k, λ_k) over the half spectrum.
-    terms: Vec<(Complex64, Complex64)>,
-    forced_bound: f64,
+    /// (a_k = 2·tip_k·w_k, λ_k, |a_k|, |λ_k|) for the complex pairs (one of each pair).
+    pairs: Vec<(Complex64, Complex64, f64, f64)>,
+    /// (a_k = tip_k·w_k, λ_k) for the real (over-damped) eigenvalues, in real arithmetic.
+    reals: Vec<(f64, f64)>,
+    /// |φ(1)ᵀX|: the forced tip amplitude.
+    forced_amplitude: f64,
+}
+
+/// e^x for x ≤ 0, flushing to zero below the double range instead of taking libm's slow
+/// underflow path (fast over-damped modes reach x ≪ −745 within a segment).
+fn decay(x: f64) -> f64 {
+    if x < -700.0 {
+        0.0
+    } else {
+        x.exp()
+    }
+}
+
+/// g and its derivatives at a point, with bounds valid from that point on.
+#[derive(Debug, Clone, Copy)]
+struct Local {
+    g: f64,
+    gd: f64,
+    gdd: f64,
+    /// ≥ |g̈| on [s, ∞)
+    bound2: f64,
+    /// ≥ |g⃛| on [s, ∞)
+    bound3: f64,
+    /// Σ of the magnitudes of g's terms: its round-off scale.
+    scale: f64,
 }
 
 impl<'a> Segment<'a> {
     fn new(flow: &'a RegionFlow, x: &DVector<f64>, phase0: f64, gap: f64) -> Self {
-        let w = flow.coefficients(x, phase0);
-        let terms = flow
-            .half
-            .iter()
-            .map(|&(k, weight)| (flow.tip_of_mode[k] * w[k] * weight, flow.lambda[k]))
-            .collect();
+        let r = x - flow.particular(phase0);
+        let n2 = r.len();
+        let mut w = DVector::zeros(n2);
+        let (mut pairs, mut reals) = (Vec::new(), Vec::new());
+        for (&(k, weight), (re, im)) in flow.half.iter().zip(&flow.v_inv_half) {
+            // row k of V⁻¹ times the real residual, real and imaginary parts in one pass
+            let (mut wr, mut wi) = (0.0, 0.0);
+            for ((a, b), x) in re.iter().zip(im).zip(r.iter()) {
+                wr += a * x;
+                wi += b * x;
+            }
+            let wk = Complex64::new(wr, wi);
+            w[k] = wk;
+            let a = flow.tip_of_mode[k] * wk * weight;
+            if weight == 1.0 {
+                reals.push((a.re, flow.lambda[k].re));
+            } else {
+                pairs.push((a, flow.lambda[k], a.norm(), flow.lambda[k].norm()));
+            }
+        }
         Self {
             flow,
             w,
@@ -207,43 +256,103 @@ impl<'a> Segment<'a> {
                 -1.0
             },
             gap,
-            terms,
-            forced_bound: flow.omega * flow.omega * flow.tip_forced.norm(),
+            pairs,
+            reals,
+            forced_amplitude: flow.tip_forced.norm(),
+        }
+    }
+
+    /// Everything the search needs at s, in one pass over the spectrum. Re λ ≤ 0, so each
+    /// term's magnitude only decreases after s and the bounds hold on [s, ∞).
+    fn local(&self, s: f64) -> Local {
+        let f = self.flow;
+        let w = f.omega;
+        let pf = f.tip_forced * Complex64::from_polar(1.0, self.phase0 + w * s);
+        let (mut d, mut v, mut acc) = (pf.re + f.tip_static, -w * pf.im, -w * w * pf.re);
+        let amp = self.forced_amplitude;
+        let (mut b2, mut b3) = (w * w * amp, w * w * w * amp);
+        let mut scale = amp + f.tip_static.abs() + self.gap.abs();
+        for &(a, l, a_abs, l_abs) in &self.pairs {
+            let decay = decay(l.re * s);
+            if decay == 0.0 {
+                continue;
+            }
+            let z = a * Complex64::from_polar(decay, l.im * s);
+            let zl = z * l;
+            d += z.re;
+            v += zl.re;
+            acc += (zl * l).re;
+            let mag = a_abs * decay;
+            let l2 = l_abs * l_abs;
+            b2 += mag * l2;
+            b3 += mag * l2 * l_abs;
+            scale += mag;
+        }
+        for &(a, l) in &self.reals {
+            let z = a * decay(l * s);
+            d += z;
+            v += z * l;
+            acc += z * l * l;
+            let mag = z.abs() * l * l;
+            b2 += mag;
+            b3 += mag * l.abs();
+            scale += z.abs();
+        }
+        Local {
+            g: self.sign * (d - self.gap),
+            gd: self.sign * v,
+            gdd: self.sign * acc,
+            bound2: b2,
+            bound3: b3,
+            scale,
         }
     }
 
     /// Tip displacement and velocity at s.
     fn tip(&self, s: f64) -> (f64, f64) {
+        let l = self.local(s);
+        (self.sign * l.g + self.gap, self.sign * l.gd)
+    }
+
+    /// A bound on |ḋ| at s: the scale against which a touch counts as grazing.
+    fn velocity_bound(&self, s: f64) -> f64 {
         let f = self.flow;
-        let e = Complex64::from_polar(1.0, self.phase0 + f.omega * s);
-        let pf = f.tip_forced * e;
-        let (mut d, mut v) = (pf.re + f.tip_static, (pf * Complex64::new(0.0, f.omega)).re);
-        for &(a, l) in &self.terms {
-            let z = a * (l * s).exp();
-            d += z.re;
-            v += (z * l).re;
-        }
-        (d, v)
-    }
-
-    /// g and ġ.
-    fn g(&self, s: f64) -> (f64, f64) {
-        let (d, v) = self.tip(s);
-        (self.sign * (d - self.gap), self.sign * v)
-    }
-
-    /// M(s): a bound on |g̈| on [s, ∞).
-    fn accel_bound(&self, s: f64) -> f64 {
-        self.forced_bound
-            + self
-                .terms
-                .iter()
-                .map(|&(a, l)| a.norm() * l.norm_sqr() * (l.re.min(0.0) * s).exp())
-                .sum::<f64>()
+        let pairs: f64 = self
+            .pairs
+            .iter()
+            .map(|&(_, l, a_abs, l_abs)| a_abs * l_abs * decay(l.re * s))
+            .sum();
+        let reals: f64 = self
+            .reals
+            .iter()
+            .map(|&(a, l)| (a * l * decay(l * s)).abs())
+            .sum();
+        f.omega * self.forced_amplitude + pairs + reals
     }
 
     fn state(&self, s: f64) -> DVector<f64> {
         self.flow.state(&self.w, self.phase0, s)
+    }
+
+    /// A step h > 0 such that g < 0 on [s, s + h) is proven, from two upper bounds of g:
+    /// the quadratic g + ġh + M₂h²/2 and the cubic g + ġh + g̈h²/2 + M₃h³/6 (the larger
+    /// certified step wins; the cubic is much longer in smooth free flight).
+    fn certified_step(&self, p: &Local, limit: f64) -> f64 {
+        let g = p.g.min(0.0);
+        let (gd, m2) = (p.gd, p.bound2);
+        let quadratic = if m2 > 0.0 {
+            (-gd + (gd * gd - 2.0 * m2 * g).sqrt()) / m2
+        } else if gd > 0.0 {
+            -g / gd
+        } else {
+            f64::INFINITY
+        };
+        let mut h = quadratic.min(limit);
+        // grow by doubling while the cubic bound stays negative on all of [0, 2h]
+        while h < limit && cubic_max(g, gd, p.gdd, p.bound3, (2.0 * h).min(limit)) < 0.0 {
+            h = (2.0 * h).min(limit);
+        }
+        h
     }
 
     /// The first s in (0, s_max] with g(s) = 0, certified (see the module doc).
@@ -255,76 +364,126 @@ impl<'a> Segment<'a> {
         stats: &mut Stats,
     ) -> Option<f64> {
         let mut s = 0.0;
-        let (mut g, mut gd) = self.g(0.0);
+        let mut p = self.local(0.0);
         stats.evaluations += 1;
-        // The last point known to have g < 0 strictly (the start may sit on the surface).
-        let mut last_negative = (g < 0.0).then_some(0.0);
+        // The last point known to have g < 0 strictly (the start may sit on the surface),
+        // with its value.
+        let mut last_negative = (p.g < 0.0).then_some((0.0, p.g));
         while s < s_max {
             stats.steps += 1;
-            let m = self.accel_bound(s);
-            let g_neg = g.min(0.0);
-            let h_star = if m > 0.0 {
-                (-gd + (gd * gd - 2.0 * m * g_neg).sqrt()) / m
-            } else if gd > 0.0 {
-                -g_neg / gd
-            } else {
-                f64::INFINITY
-            };
-            let h = h_star.max(h_min).min(s_max - s);
-            // Monotone probe: g increasing on [s, s + 2h] decides the root there at once.
+            if self.sign < 0.0 {
+                stats.contact_steps += 1;
+            }
+            let h = self.certified_step(&p, s_max - s).max(h_min).min(s_max - s);
+            // Monotone probe: if ġ > 0 throughout [s, s + 2h], one evaluation at s + 2h
+            // decides the (unique) root there.
             let probe = (2.0 * h).min(s_max - s);
-            let step = if gd - m * probe > 0.0 && probe > h {
+            let step = if p.gd - p.bound2 * probe > 0.0 && probe > h {
                 probe
             } else {
                 h
             };
-            let (gn, gdn) = self.g(s + step);
+            let next = self.local(s + step);
             stats.evaluations += 1;
-            if gn >= 0.0 {
+            if next.g >= 0.0 {
                 // A root in (s, s + step]: unique if the probe's monotonicity held; otherwise
                 // only reachable at the h_min floor or at a tangency within round-off.
                 let lo = match last_negative {
                     Some(lo) => lo,
                     None => self.negative_point(s, step, stats)?,
                 };
-                return Some(self.polish(lo, s + step, rel_tol, stats));
+                return Some(self.polish(lo, (s + step, next.g), rel_tol, stats));
             }
             s += step;
-            (g, gd) = (gn, gdn);
-            last_negative = Some(s);
+            p = next;
+            last_negative = Some((s, p.g));
         }
         None
     }
 
     /// From a start on the surface (g = 0, ġ < 0), a point in (s, s + step) with g < 0:
     /// the quadratic bound makes g(s + h*/2) < 0 for the first certified step h*.
-    fn negative_point(&self, s: f64, step: f64, stats: &mut Stats) -> Option<f64> {
+    fn negative_point(&self, s: f64, step: f64, stats: &mut Stats) -> Option<(f64, f64)> {
         let mut h = step / 2.0;
         for _ in 0..60 {
             stats.evaluations += 1;
-            if self.g(s + h).0 < 0.0 {
-                return Some(s + h);
+            let g = self.local(s + h).g;
+            if g < 0.0 {
+                return Some((s + h, g));
             }
             h /= 2.0;
         }
         None
     }
 
-    fn polish(&self, a: f64, b: f64, rel_tol: f64, stats: &mut Stats) -> f64 {
-        let mut count = 0;
-        let root = brent(
-            |s| {
-                count += 1;
-                self.g(s).0
-            },
-            a,
-            b,
-            rel_tol,
-        )
-        .unwrap_or(b);
-        stats.evaluations += count;
-        root
+    /// The root in [lo, hi] (g(lo) < 0 ≤ g(hi)) by Newton's method on the exact ġ,
+    /// safeguarded by bisection so the iterate never leaves the shrinking bracket; it
+    /// stops at the requested relative tolerance or at g's round-off floor.
+    fn polish(
+        &self,
+        (lo, g_lo): (f64, f64),
+        (hi, g_hi): (f64, f64),
+        rel_tol: f64,
+        stats: &mut Stats,
+    ) -> f64 {
+        let (mut lo, mut hi) = (lo, hi);
+        let secant = lo - g_lo * (hi - lo) / (g_hi - g_lo);
+        let mut s = if secant > lo && secant < hi {
+            secant
+        } else {
+            0.5 * (lo + hi)
+        };
+        for _ in 0..200 {
+            let p = self.local(s);
+            stats.evaluations += 1;
+            stats.polish_evaluations += 1;
+            if p.g.abs() <= 8.0 * f64::EPSILON * p.scale {
+                return s;
+            }
+            if p.g < 0.0 {
+                lo = s;
+            } else {
+                hi = s;
+            }
+            let newton = s - p.g / p.gd;
+            let next = if p.gd != 0.0 && newton > lo && newton < hi {
+                newton
+            } else {
+                0.5 * (lo + hi)
+            };
+            let tol = (rel_tol * next.abs()).max(2.0 * f64::EPSILON * next.abs());
+            if (next - s).abs() <= tol || hi - lo <= tol {
+                return next;
+            }
+            s = next;
+        }
+        s
     }
+}
+
+/// max over h ∈ [0, H] of g + ġh + g̈h²/2 + Jh³/6 (J ≥ 0): at an end or at a critical point.
+fn cubic_max(g: f64, gd: f64, gdd: f64, j: f64, big_h: f64) -> f64 {
+    let u = |h: f64| g + h * (gd + h * (gdd / 2.0 + h * j / 6.0));
+    let mut best = u(0.0).max(u(big_h));
+    // U'(h) = ġ + g̈h + Jh²/2
+    let (a, b, c) = (j / 2.0, gdd, gd);
+    if a > 0.0 {
+        let disc = b * b - 4.0 * a * c;
+        if disc >= 0.0 {
+            let r = disc.sqrt();
+            for h in [(-b - r) / (2.0 * a), (-b + r) / (2.0 * a)] {
+                if h > 0.0 && h < big_h {
+                    best = best.max(u(h));
+                }
+            }
+        }
+    } else if b != 0.0 {
+        let h = -c / b;
+        if h > 0.0 && h < big_h {
+            best = best.max(u(h));
+        }
+    }
+    best
 }
 
 impl Simulator {
@@ -408,9 +567,15 @@ impl Simulator {
             let flow = self.flow(region);
             let seg = Segment::new(flow, &x, omega * clock.offset, gap);
             trace.stats.segments += 1;
-            // Segments end at the next period boundary at the latest, so the forcing phase
-            // argument ω·(offset + s) never exceeds 2π (exact phase over long runs).
-            let horizon = period - clock.offset;
+            // Segments end at a period boundary when samples are taken there, and after at
+            // most MAX_SEGMENT_PERIODS periods otherwise, so the forcing phase argument
+            // ω·(offset + s) stays below 2π·16 and keeps ~14 digits over any run length.
+            let periods_ahead = if observe.strobe || observe.dense_per_period > 0 {
+                1
+            } else {
+                (end_cycle - clock.cycles).min(MAX_SEGMENT_PERIODS)
+            };
+            let horizon = periods_ahead as f64 * period - clock.offset;
             let crossing = seg.first_crossing(
                 horizon,
                 h_min,
@@ -440,8 +605,7 @@ impl Simulator {
                     let (_, v) = seg.tip(s);
                     // A touch whose normal velocity vanishes to round-off (relative to the
                     // tip velocity scale) does not enter the other region.
-                    let vscale =
-                        seg.accel_bound(0.0).sqrt() * (seg.terms.len() as f64).sqrt() * 1e-14;
+                    let vscale = 1e-13 * seg.velocity_bound(s);
                     let grazing = v.abs() <= vscale;
                     if observe.events {
                         trace.events.push(Event {
@@ -540,8 +704,12 @@ fn segment_energy(seg: &Segment, model: &GalerkinModel, s_end: f64) -> (f64, f64
     let n = f.modes;
     // velocity components u_m (length N) and exponents μ_m
     let mut us: Vec<(Vec<Complex64>, Complex64)> = Vec::with_capacity(2 * n + 2);
-    for k in 0..2 * n {
+    for &(k, weight) in &f.half {
         let u: Vec<Complex64> = (0..n).map(|i| f.v[(n + i, k)] * seg.w[k]).collect();
+        if weight == 2.0 {
+            // the conjugate partner carries the conjugate term
+            us.push((u.iter().map(|z| z.conj()).collect(), f.lambda[k].conj()));
+        }
         us.push((u, f.lambda[k]));
     }
     if f.omega > 0.0 {
