@@ -39,6 +39,9 @@ pub enum SceneError {
     /// Drawing failed.
     #[error(transparent)]
     Render(#[from] RenderError),
+    /// A region flow could not be built.
+    #[error(transparent)]
+    Flow(#[from] crate::flow::FlowError),
     /// Writing files failed.
     #[error("could not write {path}: {source}")]
     Io {
@@ -75,6 +78,12 @@ pub fn all() -> &'static [SceneSpec] {
             paper: "Fig 2, §2.3",
             summary: "eigenvalues of K+ for N = 1, 3, 10 vs exact (beta_i+)^4; lambda_N/(kN)",
             run: run_fig2,
+        },
+        SceneSpec {
+            name: "work-precision",
+            paper: "§5.2 (methods)",
+            summary: "error against run time: exact simulator vs DP5 reference, Fig 4 model, N = 10",
+            run: run_work_precision,
         },
     ]
 }
@@ -142,6 +151,31 @@ fn run_fig2(_: Resolution) -> Result<SceneOutput, SceneError> {
         key_numbers: k,
         table: render::fig2::table(&d),
         svg: render::fig2::plot(&d)?,
+        data: to_json(&d),
+    })
+}
+
+fn run_work_precision(resolution: Resolution) -> Result<SceneOutput, SceneError> {
+    use scenes::work_precision::{compute, WorkPrecisionParams};
+    let params = match resolution {
+        Resolution::Book => WorkPrecisionParams::book(),
+        Resolution::Test => WorkPrecisionParams::test(),
+    };
+    let d = compute(&params)?;
+    let mut k = KeyNumbers::default();
+    // Only machine-independent numbers: event counts and whether each run reproduces the
+    // reference event sequence. Errors and timings are in the table and data.json.
+    k.integer("periods", params.periods as i64);
+    k.integer("reference_events", d.reference_events as i64);
+    for p in &d.points {
+        let key = format!("{} tol={:e}", p.method, p.tolerance);
+        k.integer(format!("{key} events"), p.events as i64);
+        k.text(format!("{key} same_sequence"), p.same_sequence.to_string());
+    }
+    Ok(SceneOutput {
+        key_numbers: k,
+        table: render::work_precision::table(&d),
+        svg: render::work_precision::plot(&d)?,
         data: to_json(&d),
     })
 }

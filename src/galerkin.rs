@@ -249,6 +249,30 @@ impl GalerkinModel {
         }
     }
 
+    /// The region a state x = [η; η̇] at time t starts in: contact if d > d₀; on the
+    /// surface, contact if the tip moves into the stop, or — at zero velocity — if its
+    /// free-flight acceleration points into the stop. So the paper's start from rest at
+    /// d₀ = 0, written x⁺(0) = 0 in §5.2, begins in contact rather than with a switch.
+    pub fn starting_region(&self, x: &DVector<f64>, t: f64) -> Region {
+        let n = self.modes();
+        let (eta, vel) = (x.rows(0, n), x.rows(n, n));
+        let d = self.tip.dot(&eta) - self.params.gap;
+        let v = self.tip.dot(&vel);
+        let force = self.force(t, Region::Free);
+        let a: f64 = (0..n)
+            .map(|j| {
+                self.tip[j]
+                    * (force[j] - self.modal_stiffness[j] * eta[j] - self.damping[j] * vel[j])
+            })
+            .sum();
+        let inward = d > 0.0 || (d == 0.0 && (v > 0.0 || (v == 0.0 && a > 0.0)));
+        if inward {
+            Region::Contact
+        } else {
+            Region::Free
+        }
+    }
+
     /// [A^±] = [[0, I], [−K^±, −C]] of eq (35), 2N × 2N.
     pub fn state_matrix(&self, region: Region) -> DMatrix<f64> {
         let n = self.modes();

@@ -163,14 +163,9 @@ pub fn integrate(model: &GalerkinModel, x0: &DVector<f64>, t_end: f64, tol: Tole
     let gap = model.params.gap;
     let tip_gap = |x: &[f64]| (0..n).map(|i| model.tip[i] * x[i]).sum::<f64>() - gap;
     let mut x: Vec<f64> = x0.iter().cloned().collect();
-    // the simulator's rule: contact if d > d₀, or d = d₀ moving inward
-    let tip_velocity: f64 = (0..n).map(|i| model.tip[i] * x[n + i]).sum();
-    let g0 = tip_gap(&x);
-    let mut region = if g0 > 0.0 || (g0 == 0.0 && tip_velocity > 0.0) {
-        Region::Contact
-    } else {
-        Region::Free
-    };
+    // the model's rule (shared with the simulator): on the surface, velocity then
+    // acceleration decide
+    let mut region = model.starting_region(x0, 0.0);
     let mut t = 0.0;
     let scale_t = if omega > 0.0 {
         2.0 * std::f64::consts::PI / omega

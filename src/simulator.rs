@@ -356,6 +356,12 @@ impl<'a> Segment<'a> {
     }
 
     /// The first s in (0, s_max] with g(s) = 0, certified (see the module doc).
+    ///
+    /// A segment that starts on the surface (after a switch, or at rest on it) has
+    /// |g| within round-off there; the starting rule chose the region from the velocity or
+    /// acceleration, so values inside g's round-off band near the start are not crossings.
+    /// A crossing is accepted once g has been certainly negative (below minus its
+    /// round-off floor), or when g is certainly positive.
     fn first_crossing(
         &self,
         s_max: f64,
@@ -363,12 +369,14 @@ impl<'a> Segment<'a> {
         rel_tol: f64,
         stats: &mut Stats,
     ) -> Option<f64> {
+        let noise = |p: &Local| 8.0 * f64::EPSILON * p.scale;
         let mut s = 0.0;
         let mut p = self.local(0.0);
         stats.evaluations += 1;
-        // The last point known to have g < 0 strictly (the start may sit on the surface),
-        // with its value.
+        // The last point with g < 0 strictly, with its value; and whether g has been
+        // certainly negative yet.
         let mut last_negative = (p.g < 0.0).then_some((0.0, p.g));
+        let mut inside = p.g < -noise(&p);
         while s < s_max {
             stats.steps += 1;
             if self.sign < 0.0 {
@@ -385,18 +393,22 @@ impl<'a> Segment<'a> {
             };
             let next = self.local(s + step);
             stats.evaluations += 1;
-            if next.g >= 0.0 {
+            if next.g >= 0.0 && (inside || next.g > noise(&next)) {
                 // A root in (s, s + step]: unique if the probe's monotonicity held; otherwise
                 // only reachable at the h_min floor or at a tangency within round-off.
-                let lo = match last_negative {
-                    Some(lo) => lo,
-                    None => self.negative_point(s, step, stats)?,
-                };
-                return Some(self.polish(lo, (s + step, next.g), rel_tol, stats));
+                let lo = last_negative.or_else(|| self.negative_point(s, step, stats));
+                return Some(match lo {
+                    Some(lo) => self.polish(lo, (s + step, next.g), rel_tol, stats),
+                    // no negative value at all: the state left the region at its start
+                    None => s + step,
+                });
             }
             s += step;
             p = next;
-            last_negative = Some((s, p.g));
+            if p.g < 0.0 {
+                last_negative = Some((s, p.g));
+            }
+            inside |= p.g < -noise(&p);
         }
         None
     }
@@ -555,7 +567,7 @@ impl Simulator {
         let mut trace = Trace::default();
         let mut clock = start;
         let mut x = x0.clone();
-        let mut region = self.initial_region(&x);
+        let mut region = self.initial_region(&x, &clock);
         let mut budget = observe.energy.then(|| EnergyBudget {
             initial: self.stored_energy(&x),
             ..Default::default()
@@ -640,16 +652,9 @@ impl Simulator {
         (x, trace)
     }
 
-    /// The region a state starts in: contact if d > d₀, or d = d₀ moving inward.
-    pub fn initial_region(&self, x: &DVector<f64>) -> Region {
-        let n = self.model.modes();
-        let d = self.model.tip.dot(&x.rows(0, n)) - self.model.params.gap;
-        let v = self.model.tip.dot(&x.rows(n, n));
-        if d > 0.0 || (d == 0.0 && v > 0.0) {
-            Region::Contact
-        } else {
-            Region::Free
-        }
+    /// The region a state starts in ([`GalerkinModel::starting_region`]).
+    pub fn initial_region(&self, x: &DVector<f64>, clock: &Clock) -> Region {
+        self.model.starting_region(x, clock.offset)
     }
 
     fn sample_dense(

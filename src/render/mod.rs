@@ -3,6 +3,7 @@
 
 pub mod fig2;
 pub mod spectrum;
+pub mod work_precision;
 
 use plotters::prelude::*;
 

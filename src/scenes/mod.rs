@@ -5,3 +5,4 @@
 
 pub mod fig2;
 pub mod spectrum;
+pub mod work_precision;

@@ -1,0 +1,121 @@
+//! Error against run time: event-time error and end-state error against wall time, one
+//! series per method.
+
+use super::{drawing, markdown_table, palette, RenderError, WIDTH};
+use crate::report::format_sig;
+use crate::scenes::work_precision::WorkPrecisionData;
+use plotters::prelude::*;
+
+/// Errors below this are drawn at this floor (they are round-off).
+const FLOOR: f64 = 1e-16;
+
+/// The SVG plot.
+pub fn plot(d: &WorkPrecisionData) -> Result<String, RenderError> {
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (WIDTH, 440)).into_drawing_area();
+        root.fill(&WHITE).map_err(drawing)?;
+        let panels = root.split_evenly((1, 2));
+        let (tmin, tmax) = d.points.iter().fold((f64::MAX, 0.0_f64), |(a, b), p| {
+            (a.min(p.seconds), b.max(p.seconds))
+        });
+        let titles = ["max event-time error", "relative end-state error"];
+        for (i, panel) in panels.iter().enumerate() {
+            let value = |p: &crate::scenes::work_precision::WorkPoint| {
+                let e = if i == 0 { p.event_error } else { p.state_error };
+                e.max(FLOOR)
+            };
+            let finite: Vec<f64> = d
+                .points
+                .iter()
+                .map(value)
+                .filter(|e| e.is_finite())
+                .collect();
+            let emax = finite.iter().cloned().fold(FLOOR, f64::max) * 10.0;
+            let mut chart = ChartBuilder::on(panel)
+                .caption(titles[i], ("sans-serif", 18))
+                .margin(10)
+                .x_label_area_size(36)
+                .y_label_area_size(56)
+                .build_cartesian_2d(
+                    (tmin / 2.0..tmax * 2.0).log_scale(),
+                    (FLOOR / 2.0..emax).log_scale(),
+                )
+                .map_err(drawing)?;
+            chart
+                .configure_mesh()
+                .x_desc("wall time (s)")
+                .x_label_formatter(&|x| format!("{x:.0e}"))
+                .y_label_formatter(&|y| format!("{y:.0e}"))
+                .draw()
+                .map_err(drawing)?;
+            for (s, method) in ["exact", "DP5 reference"].iter().enumerate() {
+                let c = palette(s);
+                let pts: Vec<(f64, f64)> = d
+                    .points
+                    .iter()
+                    .filter(|p| p.method == *method && value(p).is_finite())
+                    .map(|p| (p.seconds, value(p)))
+                    .collect();
+                chart
+                    .draw_series(LineSeries::new(pts.clone(), c.stroke_width(2)))
+                    .map_err(drawing)?
+                    .label(*method)
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c));
+                chart
+                    .draw_series(pts.iter().map(|&p| Circle::new(p, 4, c.filled())))
+                    .map_err(drawing)?;
+            }
+            chart
+                .configure_series_labels()
+                .position(SeriesLabelPosition::UpperMiddle)
+                .background_style(WHITE.mix(0.8))
+                .border_style(BLACK)
+                .draw()
+                .map_err(drawing)?;
+        }
+        root.present().map_err(drawing)?;
+    }
+    Ok(svg)
+}
+
+/// The markdown table.
+pub fn table(d: &WorkPrecisionData) -> String {
+    let rows: Vec<Vec<String>> = d
+        .points
+        .iter()
+        .map(|p| {
+            vec![
+                p.method.clone(),
+                format_sig(p.tolerance, 1),
+                format!("{:.2}", p.seconds * 1e3),
+                p.events.to_string(),
+                if p.same_sequence {
+                    "yes".into()
+                } else {
+                    "**no**".into()
+                },
+                if p.event_error.is_finite() {
+                    format_sig(p.event_error, 2)
+                } else {
+                    "—".into()
+                },
+                format_sig(p.state_error, 2),
+                p.evaluations.to_string(),
+            ]
+        })
+        .collect();
+    markdown_table(
+        &[
+            "method",
+            "tolerance",
+            "wall time (ms)",
+            "events",
+            "same sequence",
+            "event-time error",
+            "end-state error",
+            "evaluations",
+        ],
+        &rows,
+    )
+}

@@ -1,0 +1,186 @@
+//! Scene `work-precision`: error against run time for the two simulation methods on the
+//! Figure 4 model (N = 10, k = 100k₁, ζ₁ = 0.01, d₀ = 0, ω = 2(β₁⁻)², from rest).
+//!
+//! - the exact piecewise-linear simulator ([`crate::simulator`]) at several root
+//!   tolerances (its only approximation is where it places each switching time);
+//! - the Dormand–Prince 5(4) reference ([`crate::reference`]) at several rtol.
+//!
+//! The reference solution is the exact simulator at its tightest tolerance; the scene
+//! also reports how far the DP5 integrator at its tightest rtol lies from it, so the
+//! reference is itself cross-checked. Wall times are the best of `repeats` runs and are
+//! the only machine-dependent numbers of the book.
+
+use crate::galerkin::{self, Forcing, GalerkinModel, GalerkinParams};
+use crate::reference::{self, Tolerances};
+use crate::simulator::{Observe, Settings, Simulator};
+use nalgebra::DVector;
+use serde::Serialize;
+use std::time::Instant;
+
+/// What the scene computes.
+#[derive(Debug, Clone, Serialize)]
+pub struct WorkPrecisionParams {
+    /// N.
+    pub modes: usize,
+    /// Forcing periods simulated from rest.
+    pub periods: u64,
+    /// Root tolerances of the exact simulator (the last is the reference solution).
+    pub root_tolerances: Vec<f64>,
+    /// rtol of the reference integrator (atol = rtol·1e-3).
+    pub rtols: Vec<f64>,
+    /// Timing repeats (best of).
+    pub repeats: usize,
+}
+
+impl WorkPrecisionParams {
+    /// The book's resolution.
+    pub fn book() -> Self {
+        Self {
+            modes: 10,
+            periods: 200,
+            root_tolerances: vec![1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12, 1e-15],
+            rtols: vec![
+                1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13,
+            ],
+            repeats: 3,
+        }
+    }
+
+    /// A reduced version for the test suite.
+    pub fn test() -> Self {
+        Self {
+            modes: 10,
+            periods: 20,
+            root_tolerances: vec![1e-2, 1e-6, 1e-15],
+            rtols: vec![1e-6, 1e-9, 1e-13],
+            repeats: 1,
+        }
+    }
+}
+
+/// One run of one method at one setting.
+#[derive(Debug, Clone, Serialize)]
+pub struct WorkPoint {
+    /// "exact" or "DP5 reference".
+    pub method: String,
+    /// The root tolerance or rtol.
+    pub tolerance: f64,
+    /// Best wall time over the repeats (s).
+    pub seconds: f64,
+    /// Contact events found.
+    pub events: usize,
+    /// Whether the event sequence (count and directions) equals the reference's.
+    pub same_sequence: bool,
+    /// max |t_event − t_event,ref| (∞ when the sequences differ).
+    pub event_error: f64,
+    /// ‖x(T) − x_ref(T)‖∞ / ‖x_ref(T)‖∞.
+    pub state_error: f64,
+    /// Switching-function evaluations (exact) or right-hand-side evaluations (DP5).
+    pub evaluations: u64,
+}
+
+/// The scene's result.
+#[derive(Debug, Clone, Serialize)]
+pub struct WorkPrecisionData {
+    /// The parameters used.
+    pub params: WorkPrecisionParams,
+    /// Events of the reference solution.
+    pub reference_events: usize,
+    /// All runs.
+    pub points: Vec<WorkPoint>,
+}
+
+/// The Figure 4 model with N modes.
+pub fn figure4_model(modes: usize) -> GalerkinModel {
+    GalerkinModel::new(
+        GalerkinParams::new(modes, 100.0 * galerkin::first_modal_stiffness())
+            .with_zeta1(0.01)
+            .with_forcing(Forcing::paper(2.0 * galerkin::first_frequency())),
+    )
+    .expect("valid Figure 4 parameters")
+}
+
+fn best_of<T>(repeats: usize, mut f: impl FnMut() -> T) -> (T, f64) {
+    let mut best = f64::INFINITY;
+    let mut out = None;
+    for _ in 0..repeats.max(1) {
+        let t = Instant::now();
+        let r = f();
+        best = best.min(t.elapsed().as_secs_f64());
+        out = Some(r);
+    }
+    (out.expect("at least one run"), best)
+}
+
+/// Runs the scene.
+pub fn compute(p: &WorkPrecisionParams) -> Result<WorkPrecisionData, crate::flow::FlowError> {
+    let model = figure4_model(p.modes);
+    let x0 = DVector::zeros(2 * p.modes);
+    let observe = Observe {
+        events: true,
+        ..Default::default()
+    };
+    let mut exact_runs = Vec::new();
+    for &tol in &p.root_tolerances {
+        let mut sim = Simulator::new(model.clone())?;
+        sim.settings = Settings {
+            root_tolerance: tol,
+        };
+        let ((x, trace), secs) = best_of(p.repeats, || sim.run(&x0, p.periods, observe));
+        let times: Vec<(f64, bool)> = trace.events.iter().map(|e| (e.time, e.entering)).collect();
+        exact_runs.push((tol, x, times, secs, trace.stats.evaluations));
+    }
+    let (_, x_ref, ev_ref, _, _) = exact_runs.last().cloned().expect("a reference tolerance");
+    let period = Simulator::new(model.clone())?.period();
+    let t_end = p.periods as f64 * period;
+    let compare = |x: &DVector<f64>, ev: &[(f64, bool)]| {
+        let same = ev.len() == ev_ref.len() && ev.iter().zip(&ev_ref).all(|(a, b)| a.1 == b.1);
+        let event_error = if same {
+            ev.iter()
+                .zip(&ev_ref)
+                .map(|(a, b)| (a.0 - b.0).abs())
+                .fold(0.0, f64::max)
+        } else {
+            f64::INFINITY
+        };
+        (same, event_error, (x - &x_ref).amax() / x_ref.amax())
+    };
+    let mut points = Vec::new();
+    for (tol, x, ev, secs, evals) in &exact_runs {
+        let (same, ee, se) = compare(x, ev);
+        points.push(WorkPoint {
+            method: "exact".into(),
+            tolerance: *tol,
+            seconds: *secs,
+            events: ev.len(),
+            same_sequence: same,
+            event_error: ee,
+            state_error: se,
+            evaluations: *evals,
+        });
+    }
+    for &rtol in &p.rtols {
+        let tol = Tolerances {
+            rtol,
+            atol: rtol * 1e-3,
+        };
+        let (r, secs) = best_of(p.repeats, || reference::integrate(&model, &x0, t_end, tol));
+        let ev: Vec<(f64, bool)> = r.events.iter().map(|e| (e.time, e.entering)).collect();
+        let (same, ee, se) = compare(&r.state, &ev);
+        points.push(WorkPoint {
+            method: "DP5 reference".into(),
+            tolerance: rtol,
+            seconds: secs,
+            events: ev.len(),
+            same_sequence: same,
+            event_error: ee,
+            state_error: se,
+            evaluations: r.evaluations,
+        });
+    }
+    Ok(WorkPrecisionData {
+        params: p.clone(),
+        reference_events: ev_ref.len(),
+        points,
+    })
+}
