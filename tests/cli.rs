@@ -22,7 +22,7 @@ fn unknown_scene_is_rejected_with_the_list_of_scenes() {
     assert_eq!(code, 2);
     assert_eq!(
         err,
-        "error: invalid scene NAME: got nope; allowed: one of spectrum, fig2\n"
+        "error: invalid scene NAME: got nope; allowed: one of spectrum, fig2, work-precision\n"
     );
 }
 
@@ -83,4 +83,73 @@ fn modes_command_compares_galerkin_and_continuum() {
     for e in v["eigenvalues"].as_array().unwrap() {
         assert!(e["rel_error"].as_f64().unwrap().abs() < 1e-14);
     }
+}
+
+fn simulate(extra: &[(&str, &str)]) -> (i32, String, String) {
+    let mut args = vec![
+        ("--modes", "2"),
+        ("--stop-stiffness", "100"),
+        ("--zeta1", "0.01"),
+        ("--omega", "2"),
+        ("--periods", "300"),
+        ("--record", "8"),
+    ];
+    for (k, v) in extra {
+        args.retain(|(a, _)| a != k);
+        args.push((k, v));
+    }
+    let mut argv = vec!["simulate"];
+    for (k, v) in &args {
+        argv.push(k);
+        argv.push(v);
+    }
+    argv.push("--json");
+    cantilever(&argv)
+}
+
+#[test]
+fn simulate_rejects_bad_values_with_one_line() {
+    for (flag, value, message) in [
+        ("--modes", "0", "error: invalid --modes (N): got 0; allowed: an integer from 1 to 400\n"),
+        (
+            "--stop-stiffness",
+            "-1",
+            "error: invalid --stop-stiffness (k/k₁): got -1; allowed: a finite number ≥ 0\n",
+        ),
+        ("--zeta1", "0", "error: invalid --zeta1 (ζ₁): got 0; allowed: a finite number > 0\n"),
+        ("--zeta1", "-0.5", "error: invalid --zeta1 (ζ₁): got -0.5; allowed: a finite number > 0\n"),
+        ("--omega", "nan", "error: invalid --omega (ω/(β₁⁻)²): got NaN; allowed: a finite number > 0\n"),
+        ("--gap", "inf", "error: invalid --gap (d₀): got inf; allowed: a finite number\n"),
+    ] {
+        let (code, out, err) = simulate(&[(flag, value)]);
+        assert_eq!(code, 2, "{flag} {value}");
+        assert!(out.is_empty());
+        assert_eq!(err, message);
+    }
+}
+
+#[test]
+fn simulate_json_reports_the_orbit_and_its_checks() {
+    let (code, out, err) = simulate(&[]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    for key in ["period_m", "impacts_n", "max_tip", "energy_imbalance", "wall_seconds"] {
+        assert!(v.get(key).is_some(), "missing {key}");
+    }
+    // N = 2 at the Figure 4 parameters settles on the (2, 4) orbit within 300 periods
+    assert_eq!(v["period_m"], 2);
+    assert_eq!(v["impacts_n"], 4);
+    // round-off level: the exact per-segment energy integrals close the balance
+    assert!(v["energy_imbalance"].as_f64().unwrap() < 1e-12);
+    assert!(!v["events"].as_array().unwrap().is_empty());
+}
+
+#[test]
+fn simulate_reports_null_period_when_not_settled() {
+    // two periods from rest cannot be periodic to 1e-9
+    let (code, out, _) = simulate(&[("--periods", "0"), ("--record", "4")]);
+    assert_eq!(code, 0);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert!(v["period_m"].is_null());
+    assert!(v["periodicity_residual"].as_f64().unwrap() > 1e-9);
 }
