@@ -30,6 +30,13 @@ fn simulate(c: &mut Criterion) {
         });
     }
     g.finish();
+    let mut g = c.benchmark_group("exact_200_periods");
+    let sim = Simulator::new(model(10, 100.0, 0.01)).unwrap();
+    let x0 = DVector::zeros(20);
+    g.bench_function("fig4_N10", |b| {
+        b.iter(|| sim.run(black_box(&x0), 200, Observe::default()))
+    });
+    g.finish();
     let mut g = c.benchmark_group("setup");
     g.bench_function("flows_N20", |b| {
         b.iter(|| Simulator::new(model(20, 1000.0, 0.01)).unwrap())
@@ -42,7 +49,7 @@ fn reference_integrator(c: &mut Criterion) {
     g.sample_size(10);
     let m = model(10, 100.0, 0.01);
     let t_end = 200.0 * 2.0 * std::f64::consts::PI / (2.0 * galerkin::first_frequency());
-    for rtol in [1e-6, 1e-9] {
+    for rtol in [1e-6, 1e-9, 1e-12] {
         g.bench_function(format!("fig4_N10_rtol{rtol:e}"), |b| {
             b.iter(|| {
                 reference::integrate(

@@ -59,6 +59,10 @@ pub struct RegionFlow {
     /// Real and imaginary parts of the rows of V⁻¹ at the half-spectrum indices, in the
     /// order of `half`, contiguous: a segment's set-up is two real dot products per row.
     pub v_inv_half: Vec<(Vec<f64>, Vec<f64>)>,
+    /// Columns of V for the complex pairs (index, real part, imaginary part), contiguous.
+    state_pairs: Vec<(usize, Vec<f64>, Vec<f64>)>,
+    /// Columns of V for the real eigenvalues (index, column), real arithmetic.
+    state_reals: Vec<(usize, Vec<f64>)>,
     /// X with (iωI − A)X = b̂: the complex amplitude of the forced response.
     pub forced: DVector<Complex64>,
     /// x_s: the static response to the stop preload.
@@ -131,8 +135,24 @@ impl RegionFlow {
                 )
             })
             .collect();
+        let mut state_pairs = Vec::new();
+        let mut state_reals = Vec::new();
+        for &(k, weight) in &half {
+            let col = v.column(k);
+            if weight == 1.0 {
+                state_reals.push((k, col.iter().map(|z| z.re).collect()));
+            } else {
+                state_pairs.push((
+                    k,
+                    col.iter().map(|z| 2.0 * z.re).collect(),
+                    col.iter().map(|z| 2.0 * z.im).collect(),
+                ));
+            }
+        }
         Ok(Self {
             v_inv_half,
+            state_pairs,
+            state_reals,
             region,
             modes: n,
             lambda,
@@ -171,13 +191,32 @@ impl RegionFlow {
     /// half-spectrum entries of `w` are read; the others are their conjugates).
     pub fn state(&self, w: &DVector<Complex64>, phase: f64, s: f64) -> DVector<f64> {
         let mut x = self.particular(phase + self.omega * s);
-        for &(k, weight) in &self.half {
-            let c = w[k] * (self.lambda[k] * s).exp() * weight;
-            for (xi, v) in x.iter_mut().zip(self.v.column(k).iter()) {
-                *xi += v.re * c.re - v.im * c.im;
+        for (k, re, im) in &self.state_pairs {
+            let l = self.lambda[*k];
+            let c = w[*k] * Complex64::from_polar(decay(l.re * s), l.im * s);
+            for (xi, (a, b)) in x.iter_mut().zip(re.iter().zip(im)) {
+                *xi += a * c.re - b * c.im;
+            }
+        }
+        for (k, col) in &self.state_reals {
+            let c = w[*k].re * decay(self.lambda[*k].re * s);
+            if c != 0.0 {
+                for (xi, a) in x.iter_mut().zip(col) {
+                    *xi += a * c;
+                }
             }
         }
         x
+    }
+}
+
+/// e^x for x ≤ 0, flushed to zero below the double range (libm's underflow path is slow,
+/// and fast over-damped modes reach x ≪ −745 within one segment).
+pub fn decay(x: f64) -> f64 {
+    if x < -700.0 {
+        0.0
+    } else {
+        x.exp()
     }
 }
 

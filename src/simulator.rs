@@ -24,7 +24,7 @@
 //! **Time.** t = cycles·T + offset with offset ∈ [0, T): the forcing phase ω·offset never
 //! loses precision over long runs.
 
-use crate::flow::{FlowError, RegionFlow};
+use crate::flow::{decay, FlowError, RegionFlow};
 use crate::galerkin::{GalerkinModel, Region};
 use nalgebra::DVector;
 use num_complex::Complex64;
@@ -200,16 +200,6 @@ struct Segment<'a> {
     forced_amplitude: f64,
 }
 
-/// e^x for x ≤ 0, flushing to zero below the double range instead of taking libm's slow
-/// underflow path (fast over-damped modes reach x ≪ −745 within a segment).
-fn decay(x: f64) -> f64 {
-    if x < -700.0 {
-        0.0
-    } else {
-        x.exp()
-    }
-}
-
 /// g and its derivatives at a point, with bounds valid from that point on.
 #[derive(Debug, Clone, Copy)]
 struct Local {
@@ -231,13 +221,17 @@ impl<'a> Segment<'a> {
         let mut w = DVector::zeros(n2);
         let (mut pairs, mut reals) = (Vec::new(), Vec::new());
         for (&(k, weight), (re, im)) in flow.half.iter().zip(&flow.v_inv_half) {
-            // row k of V⁻¹ times the real residual, real and imaginary parts in one pass
-            let (mut wr, mut wi) = (0.0, 0.0);
-            for ((a, b), x) in re.iter().zip(im).zip(r.iter()) {
-                wr += a * x;
-                wi += b * x;
-            }
-            let wk = Complex64::new(wr, wi);
+            // row k of V⁻¹ times the real residual (a real row for a real eigenvalue)
+            let wk = if weight == 1.0 {
+                Complex64::new(re.iter().zip(r.iter()).map(|(a, x)| a * x).sum(), 0.0)
+            } else {
+                let (mut wr, mut wi) = (0.0, 0.0);
+                for ((a, b), x) in re.iter().zip(im).zip(r.iter()) {
+                    wr += a * x;
+                    wi += b * x;
+                }
+                Complex64::new(wr, wi)
+            };
             w[k] = wk;
             let a = flow.tip_of_mode[k] * wk * weight;
             if weight == 1.0 {

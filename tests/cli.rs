@@ -110,16 +110,36 @@ fn simulate(extra: &[(&str, &str)]) -> (i32, String, String) {
 #[test]
 fn simulate_rejects_bad_values_with_one_line() {
     for (flag, value, message) in [
-        ("--modes", "0", "error: invalid --modes (N): got 0; allowed: an integer from 1 to 400\n"),
+        (
+            "--modes",
+            "0",
+            "error: invalid --modes (N): got 0; allowed: an integer from 1 to 400\n",
+        ),
         (
             "--stop-stiffness",
             "-1",
             "error: invalid --stop-stiffness (k/k₁): got -1; allowed: a finite number ≥ 0\n",
         ),
-        ("--zeta1", "0", "error: invalid --zeta1 (ζ₁): got 0; allowed: a finite number > 0\n"),
-        ("--zeta1", "-0.5", "error: invalid --zeta1 (ζ₁): got -0.5; allowed: a finite number > 0\n"),
-        ("--omega", "nan", "error: invalid --omega (ω/(β₁⁻)²): got NaN; allowed: a finite number > 0\n"),
-        ("--gap", "inf", "error: invalid --gap (d₀): got inf; allowed: a finite number\n"),
+        (
+            "--zeta1",
+            "0",
+            "error: invalid --zeta1 (ζ₁): got 0; allowed: a finite number > 0\n",
+        ),
+        (
+            "--zeta1",
+            "-0.5",
+            "error: invalid --zeta1 (ζ₁): got -0.5; allowed: a finite number > 0\n",
+        ),
+        (
+            "--omega",
+            "nan",
+            "error: invalid --omega (ω/(β₁⁻)²): got NaN; allowed: a finite number > 0\n",
+        ),
+        (
+            "--gap",
+            "inf",
+            "error: invalid --gap (d₀): got inf; allowed: a finite number\n",
+        ),
     ] {
         let (code, out, err) = simulate(&[(flag, value)]);
         assert_eq!(code, 2, "{flag} {value}");
@@ -133,7 +153,13 @@ fn simulate_json_reports_the_orbit_and_its_checks() {
     let (code, out, err) = simulate(&[]);
     assert_eq!(code, 0, "{err}");
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
-    for key in ["period_m", "impacts_n", "max_tip", "energy_imbalance", "wall_seconds"] {
+    for key in [
+        "period_m",
+        "impacts_n",
+        "max_tip",
+        "energy_imbalance",
+        "wall_seconds",
+    ] {
         assert!(v.get(key).is_some(), "missing {key}");
     }
     // N = 2 at the Figure 4 parameters settles on the (2, 4) orbit within 300 periods

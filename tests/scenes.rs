@@ -102,14 +102,30 @@ fn verdict_numbers_quoted_in_the_book() {
 
 #[test]
 fn work_precision_methods_agree_and_the_exact_one_is_at_round_off() {
-    use impacting_cantilever::scenes::work_precision::{WorkPrecisionParams, compute};
+    use impacting_cantilever::scenes::work_precision::{compute, WorkPrecisionParams};
     let d = compute(&WorkPrecisionParams::test()).unwrap();
-    assert!(d.points.iter().all(|p| p.same_sequence), "every run finds the same events");
-    let tightest_dp5 = d.points.iter().filter(|p| p.method != "exact").last().unwrap();
+    assert!(
+        d.points.iter().all(|p| p.same_sequence),
+        "every run finds the same events"
+    );
+    let tightest_dp5 = d
+        .points
+        .iter()
+        .filter(|p| p.method != "exact")
+        .last()
+        .unwrap();
     // the cross-verification bound, 1e-8, for the reference at its tightest rtol
-    assert!(tightest_dp5.event_error < 1e-8, "{:e}", tightest_dp5.event_error);
+    assert!(
+        tightest_dp5.event_error < 1e-8,
+        "{:e}",
+        tightest_dp5.event_error
+    );
     // the exact method at root tolerance 1e-6 is already at round-off (Newton converges
     // quadratically past the tolerance): within 1e-12 of its 1e-15 run
-    let exact_1e6 = d.points.iter().find(|p| p.method == "exact" && p.tolerance == 1e-6).unwrap();
+    let exact_1e6 = d
+        .points
+        .iter()
+        .find(|p| p.method == "exact" && p.tolerance == 1e-6)
+        .unwrap();
     assert!(exact_1e6.event_error < 1e-12 && exact_1e6.state_error < 1e-12);
 }

@@ -376,11 +376,27 @@ fn a_start_at_rest_on_the_stop_begins_in_contact() {
     // §5.2's x⁺(0) = 0 with d₀ = 0: on the surface, at rest, the forcing (cos 0 = 1 > 0)
     // accelerates the tip into the stop, so the run starts in contact with no event at 0.
     let m = fig4(3);
-    assert_eq!(m.starting_region(&DVector::zeros(6), 0.0), impacting_cantilever::galerkin::Region::Contact);
+    assert_eq!(
+        m.starting_region(&DVector::zeros(6), 0.0),
+        impacting_cantilever::galerkin::Region::Contact
+    );
     // half a period later the forcing pulls outward: the same state starts in free flight
     let half = PI / (2.0 * w1());
-    assert_eq!(m.starting_region(&DVector::zeros(6), half), impacting_cantilever::galerkin::Region::Free);
+    assert_eq!(
+        m.starting_region(&DVector::zeros(6), half),
+        impacting_cantilever::galerkin::Region::Free
+    );
     let sim = Simulator::new(m).unwrap();
-    let (_, t) = sim.run(&DVector::zeros(6), 1, Observe { events: true, ..Default::default() });
-    assert!(!t.events[0].entering && t.events[0].time > 0.01, "first event: leaving contact");
+    let (_, t) = sim.run(
+        &DVector::zeros(6),
+        1,
+        Observe {
+            events: true,
+            ..Default::default()
+        },
+    );
+    assert!(
+        !t.events[0].entering && t.events[0].time > 0.01,
+        "first event: leaving contact"
+    );
 }
