@@ -151,13 +151,15 @@ pub fn latex_to_mathml(tex: &str, display: bool) -> Result<String> {
 }
 
 /// Replaces math delimiters in markdown, leaving fenced code and inline code alone.
-/// `\$` is a literal dollar sign.
+/// `\$` is a literal dollar sign. Math may continue across line breaks (prose is wrapped),
+/// but not across a blank line.
 pub fn convert_math(markdown: &str) -> Result<String> {
     let mut out = String::with_capacity(markdown.len());
     let mut in_fence = false;
-    let mut display: Option<String> = None;
+    // open math: its text so far, and whether it is display math
+    let mut open: Option<(String, bool)> = None;
     for line in markdown.split_inclusive('\n') {
-        if display.is_none() && line.trim_start().starts_with("```") {
+        if open.is_none() && line.trim_start().starts_with("```") {
             in_fence = !in_fence;
             out.push_str(line);
             continue;
@@ -166,15 +168,22 @@ pub fn convert_math(markdown: &str) -> Result<String> {
             out.push_str(line);
             continue;
         }
+        if let Some((buf, _)) = &open {
+            if line.trim().is_empty() {
+                bail!("math left open at a blank line: ${}", buf.trim());
+            }
+        }
         let mut rest = line;
         while !rest.is_empty() {
-            if let Some(buf) = display.as_mut() {
-                match rest.find("$$") {
+            if let Some((buf, display)) = open.as_mut() {
+                let delimiter = if *display { "$$" } else { "$" };
+                match rest.find(delimiter) {
                     Some(end) => {
                         buf.push_str(&rest[..end]);
-                        out.push_str(&latex_to_mathml(buf.trim(), true)?);
-                        display = None;
-                        rest = &rest[end + 2..];
+                        let tex = buf.split_whitespace().collect::<Vec<_>>().join(" ");
+                        out.push_str(&latex_to_mathml(&tex, *display)?);
+                        rest = &rest[end + delimiter.len()..];
+                        open = None;
                     }
                     None => {
                         buf.push_str(rest);
@@ -200,20 +209,16 @@ pub fn convert_math(markdown: &str) -> Result<String> {
                 out.push_str(&tail[..end]);
                 rest = &tail[end..];
             } else if let Some(after) = tail.strip_prefix("$$") {
-                display = Some(String::new());
+                open = Some((String::new(), true));
                 rest = after;
             } else {
-                let inner = &tail[1..];
-                let Some(end) = inner.find('$') else {
-                    bail!("unclosed inline math in line: {}", line.trim_end());
-                };
-                out.push_str(&latex_to_mathml(&inner[..end], false)?);
-                rest = &inner[end + 1..];
+                open = Some((String::new(), false));
+                rest = &tail[1..];
             }
         }
     }
-    if display.is_some() {
-        bail!("unclosed display math ($$)");
+    if let Some((buf, _)) = open {
+        bail!("unclosed math at the end of the chapter: ${}", buf.trim());
     }
     Ok(out)
 }
@@ -247,5 +252,12 @@ mod tests {
     fn bad_latex_is_an_error() {
         assert!(convert_math("$\\frac{1}$").is_err());
         assert!(convert_math("$x").is_err());
+        assert!(convert_math("$x\n\ny$").is_err(), "not across paragraphs");
+    }
+
+    #[test]
+    fn inline_math_may_wrap_across_lines() {
+        let html = convert_math("a sum $g(s) = x +\n y$ here\n").unwrap();
+        assert!(html.contains("<math") && html.contains(" here"));
     }
 }
