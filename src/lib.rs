@@ -20,6 +20,7 @@ pub mod flow;
 pub mod galerkin;
 pub mod golden;
 pub mod numerics;
+pub mod orbit;
 pub mod reference;
 pub mod render;
 pub mod report;

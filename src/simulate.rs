@@ -8,12 +8,10 @@
 use crate::error::{self, ParameterError};
 use crate::flow::FlowError;
 use crate::galerkin::{self, Forcing, GalerkinModel, GalerkinParams};
+use crate::orbit::{MAX_PERIOD, PERIODIC_TOLERANCE, detect_period};
 use crate::simulator::{Clock, EnergyBudget, Event, Observe, Simulator};
 use nalgebra::DVector;
 use std::time::Instant;
-
-/// Periodicity threshold of §5.2: ‖x(t₀ + mT) − x(t₀)‖ < 1e-9 (max norm on [η; η̇]).
-pub const PERIODIC_TOLERANCE: f64 = 1e-9;
 
 /// The command's inputs.
 #[derive(Debug, Clone)]
@@ -52,9 +50,10 @@ pub struct Report {
     pub args: Args,
     /// Contact events in the recorded window.
     pub events: Vec<Event>,
-    /// The smallest m ≤ record/2 with ‖x(t₀ + mT) − x(t₀)‖∞ < 1e-9, if any.
+    /// The smallest m ≤ min(32, record/2) with ‖x(t₀ + mT) − x(t₀)‖∞ < 1e-9‖x(t₀)‖∞
+    /// ([`crate::orbit`]), if any.
     pub period_m: Option<u64>,
-    /// The smallest residual ‖x(t₀ + mT) − x(t₀)‖∞ over m ≤ record/2.
+    /// The smallest relative residual over those m.
     pub periodicity_residual: f64,
     /// Entries into contact in the last m periods (or in the whole window if not periodic).
     pub impacts_n: u64,
@@ -90,23 +89,6 @@ pub fn model(args: &Args) -> Result<GalerkinModel, ParameterError> {
     GalerkinModel::new(p)
 }
 
-/// The smallest m ≤ max_m with ‖x_last − x_{last−m}‖∞ < tol, and the best residual.
-pub fn detect_period(strobe: &[DVector<f64>], tol: f64, max_m: usize) -> (Option<u64>, f64) {
-    let last = match strobe.last() {
-        Some(x) => x,
-        None => return (None, f64::INFINITY),
-    };
-    let mut best = f64::INFINITY;
-    for m in 1..=max_m.min(strobe.len() - 1) {
-        let r = (last - &strobe[strobe.len() - 1 - m]).amax();
-        best = best.min(r);
-        if r < tol {
-            return (Some(m as u64), r);
-        }
-    }
-    (None, best)
-}
-
 /// Runs the command.
 pub fn run(args: &Args) -> Result<Report, Error> {
     let model = model(args)?;
@@ -135,7 +117,7 @@ pub fn run(args: &Args) -> Result<Report, Error> {
     let wall_seconds = started.elapsed().as_secs_f64();
     let strobe: Vec<DVector<f64>> = window.strobe.iter().map(|(_, x)| x.clone()).collect();
     let (period_m, periodicity_residual) =
-        detect_period(&strobe, PERIODIC_TOLERANCE, (args.record / 2) as usize);
+        detect_period(&strobe, PERIODIC_TOLERANCE, MAX_PERIOD.min(args.record as usize / 2));
     let last_cycle = start.cycles + args.record as i64;
     let from_cycle = last_cycle - period_m.unwrap_or(args.record) as i64;
     let impacts_n = window

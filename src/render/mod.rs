@@ -2,6 +2,7 @@
 //! `<text>` and so needs no system fonts) and markdown tables. No numerics here.
 
 pub mod fig2;
+pub mod fig4;
 pub mod spectrum;
 pub mod work_precision;
 

@@ -4,5 +4,6 @@
 //! scenes and the glue between the two is [`crate::catalog`].
 
 pub mod fig2;
+pub mod fig4;
 pub mod spectrum;
 pub mod work_precision;
