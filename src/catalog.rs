@@ -86,6 +86,12 @@ pub fn all() -> &'static [SceneSpec] {
             run: run_fig4,
         },
         SceneSpec {
+            name: "fig5",
+            paper: "Fig 5, §5.3",
+            summary: "bifurcation diagrams in k (impact section), N = 1, 2, 3, 10, random starts",
+            run: run_fig5,
+        },
+        SceneSpec {
             name: "work-precision",
             paper: "§5.2 (methods)",
             summary: "error against run time: exact simulator vs DP5 reference, Fig 4 model, N = 10",
@@ -162,7 +168,7 @@ fn run_fig2(_: Resolution) -> Result<SceneOutput, SceneError> {
 }
 
 fn run_fig4(resolution: Resolution) -> Result<SceneOutput, SceneError> {
-    use scenes::fig4::{Fig4Params, compute};
+    use scenes::fig4::{compute, Fig4Params};
     let params = match resolution {
         Resolution::Book => Fig4Params::book(),
         Resolution::Test => Fig4Params::test(),
@@ -175,7 +181,11 @@ fn run_fig4(resolution: Resolution) -> Result<SceneOutput, SceneError> {
         k.text(format!("{key} paper"), p.paper.to_string());
         k.text(
             format!("{key} verdict"),
-            if p.kind == p.paper { "reproduced" } else { "not reproduced" },
+            if p.kind == p.paper {
+                "reproduced"
+            } else {
+                "not reproduced"
+            },
         );
         // on a stable periodic orbit these are converged to round-off; 6 figures are safe
         for (i, v) in p.impact_velocities.iter().enumerate() {
@@ -186,20 +196,95 @@ fn run_fig4(resolution: Resolution) -> Result<SceneOutput, SceneError> {
         if let Some(depth) = p.dwell_depth {
             k.float(format!("{key} dwell_depth"), depth, 2);
         }
-        k.text(format!("{key} long_transient"), p.evidence.long_transient.to_string());
-        k.text(format!("{key} loose_tolerance"), p.evidence.loose_tolerance.to_string());
+        k.text(
+            format!("{key} long_transient"),
+            p.evidence.long_transient.to_string(),
+        );
+        k.text(
+            format!("{key} loose_tolerance"),
+            p.evidence.loose_tolerance.to_string(),
+        );
         if let Some((n, _)) = p.evidence.reference {
             k.integer(format!("{key} reference_entries_per_orbit"), n as i64);
         }
         for (kind, count) in &p.evidence.random_starts {
             k.integer(format!("{key} random_starts {kind}"), *count as i64);
         }
-        k.text(format!("{key} literal_caption_damping"), p.evidence.literal_caption.to_string());
+        k.text(
+            format!("{key} literal_caption_damping"),
+            p.evidence.literal_caption.to_string(),
+        );
     }
     Ok(SceneOutput {
         key_numbers: k,
         table: render::fig4::table(&d),
         svg: render::fig4::plot(&d)?,
+        data: to_json(&d),
+    })
+}
+
+fn run_fig5(resolution: Resolution) -> Result<SceneOutput, SceneError> {
+    use scenes::fig5::{compute, Fig5Params};
+    let params = match resolution {
+        Resolution::Book => Fig5Params::book(),
+        Resolution::Test => Fig5Params::test(),
+    };
+    // hidden when stderr is not a terminal (CI, pipes)
+    let bar = indicatif::ProgressBar::new((params.points * params.modes.len()) as u64).with_style(
+        indicatif::ProgressStyle::with_template(
+            "fig5 {elapsed_precise} [{bar:30}] {pos}/{len} (N, k) points, eta {eta}",
+        )
+        .expect("template")
+        .progress_chars("=> "),
+    );
+    let d = compute(&params, &|| bar.inc(1))?;
+    bar.finish_and_clear();
+    let mut k = KeyNumbers::default();
+    for g in &d.diagrams {
+        // the orbit sets along k, exactly (integers): the diagram's skeleton
+        let sets: Vec<String> = (0..d.k_over_k1.len())
+            .map(|i| {
+                g.kinds(i)
+                    .iter()
+                    .map(|k| k.to_string())
+                    .collect::<Vec<_>>()
+                    .join("+")
+            })
+            .collect();
+        k.text(format!("N={} orbits along k", g.modes), sets.join(" "));
+    }
+    let c = &d.claims;
+    k.text(
+        "all (1,1) at smallest k",
+        c.all_one_one_at_smallest_k.to_string(),
+    );
+    // the velocities at the smallest k agree to round-off across N only if the higher
+    // modes are not excited; 2 figures of the spread are robust
+    k.float(
+        "velocity spread at smallest k",
+        c.velocity_spread_at_smallest_k,
+        2,
+    );
+    let opt = |v: Option<f64>| v.map_or("never".to_string(), |x| format!("{x:.4e}"));
+    k.text(
+        "first orbit difference N=10 vs N=1 (k/k1)",
+        opt(c.first_orbit_difference),
+    );
+    k.text(
+        "first velocity difference N=10 vs N=1 (k/k1)",
+        opt(c.first_velocity_difference),
+    );
+    k.float("N=3 vs N=10 orbit agreement", c.n3_n10_agreement, 4);
+    k.float("N=2 vs N=10 orbit agreement", c.n2_n10_agreement, 4);
+    k.text("N=3 reaches (1,3) from (k/k1)", opt(c.n3_one_three_from));
+    k.integer(
+        "k values matching all four Fig 4 orbits",
+        c.paper_figure4_set_at.len() as i64,
+    );
+    Ok(SceneOutput {
+        key_numbers: k,
+        table: render::fig5::table(&d),
+        svg: render::fig5::plot(&d)?,
         data: to_json(&d),
     })
 }

@@ -24,7 +24,11 @@ pub const MAX_PERIOD: usize = 32;
 /// ‖a − b‖∞ / max(‖a‖∞, ‖b‖∞).
 pub fn relative_residual(a: &DVector<f64>, b: &DVector<f64>) -> f64 {
     let scale = a.amax().max(b.amax());
-    if scale == 0.0 { 0.0 } else { (a - b).amax() / scale }
+    if scale == 0.0 {
+        0.0
+    } else {
+        (a - b).amax() / scale
+    }
 }
 
 /// The smallest m ≤ max_m with a relative residual below `tol` between the last strobe
@@ -87,15 +91,21 @@ pub struct Orbit {
 impl Orbit {
     /// Entries into contact (grazing touches excluded) in cycles [from, to).
     pub fn entries(&self, from: i64, to: i64) -> impl Iterator<Item = &Event> {
-        self.events
-            .iter()
-            .filter(move |e| e.entering && !e.grazing && e.clock.cycles >= from && e.clock.cycles < to)
+        self.events.iter().filter(move |e| {
+            e.entering && !e.grazing && e.clock.cycles >= from && e.clock.cycles < to
+        })
     }
 }
 
 /// Runs `transient` periods from x0 (observing nothing), then `window` periods recording the
 /// strobe, the events and (if `dense_per_period` > 0) dense samples, and labels the orbit.
-pub fn settle(sim: &Simulator, x0: &DVector<f64>, transient: u64, window: u64, dense_per_period: usize) -> Orbit {
+pub fn settle(
+    sim: &Simulator,
+    x0: &DVector<f64>,
+    transient: u64,
+    window: u64,
+    dense_per_period: usize,
+) -> Orbit {
     let (x, _) = sim.run(x0, transient, Observe::default());
     let start = Clock {
         period: sim.period(),
@@ -158,9 +168,18 @@ impl SplitMix64 {
 
 /// A random state of tip-displacement scale `amplitude` and frequency scale ω: each η_j
 /// uniform in ±amplitude/2 (so the tip, 2Ση, is O(amplitude)), each η̇_j in ±ω·amplitude/2.
-pub fn random_state(rng: &mut SplitMix64, modes: usize, amplitude: f64, omega: f64) -> DVector<f64> {
+pub fn random_state(
+    rng: &mut SplitMix64,
+    modes: usize,
+    amplitude: f64,
+    omega: f64,
+) -> DVector<f64> {
     DVector::from_fn(2 * modes, |i, _| {
-        let scale = if i < modes { 0.5 * amplitude } else { 0.5 * amplitude * omega };
+        let scale = if i < modes {
+            0.5 * amplitude
+        } else {
+            0.5 * amplitude * omega
+        };
         scale * rng.symmetric() / modes as f64
     })
 }

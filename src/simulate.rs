@@ -8,7 +8,7 @@
 use crate::error::{self, ParameterError};
 use crate::flow::FlowError;
 use crate::galerkin::{self, Forcing, GalerkinModel, GalerkinParams};
-use crate::orbit::{MAX_PERIOD, PERIODIC_TOLERANCE, detect_period};
+use crate::orbit::{detect_period, MAX_PERIOD, PERIODIC_TOLERANCE};
 use crate::simulator::{Clock, EnergyBudget, Event, Observe, Simulator};
 use nalgebra::DVector;
 use std::time::Instant;
@@ -116,8 +116,11 @@ pub fn run(args: &Args) -> Result<Report, Error> {
     let (_, window) = sim.run_from(&x, start, args.record, observe);
     let wall_seconds = started.elapsed().as_secs_f64();
     let strobe: Vec<DVector<f64>> = window.strobe.iter().map(|(_, x)| x.clone()).collect();
-    let (period_m, periodicity_residual) =
-        detect_period(&strobe, PERIODIC_TOLERANCE, MAX_PERIOD.min(args.record as usize / 2));
+    let (period_m, periodicity_residual) = detect_period(
+        &strobe,
+        PERIODIC_TOLERANCE,
+        MAX_PERIOD.min(args.record as usize / 2),
+    );
     let last_cycle = start.cycles + args.record as i64;
     let from_cycle = last_cycle - period_m.unwrap_or(args.record) as i64;
     let impacts_n = window

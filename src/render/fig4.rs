@@ -1,7 +1,7 @@
 //! Figure 4: one period of each orbit — tip displacement against time and the phase
 //! portrait — free flight in blue, contact in red.
 
-use super::{RenderError, WIDTH, drawing, markdown_table};
+use super::{drawing, markdown_table, RenderError, WIDTH};
 use crate::orbit::OrbitKind;
 use crate::report::format_sig;
 use crate::scenes::fig4::Fig4Data;
@@ -28,13 +28,20 @@ pub fn plot(d: &Fig4Data) -> Result<String, RenderError> {
     let rows = d.panels.len().max(1);
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (WIDTH, 260 * rows as u32)).into_drawing_area();
+        let root =
+            SVGBackend::with_string(&mut svg, (WIDTH, 260 * rows as u32)).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
         let cells = root.split_evenly((rows, 2));
         for (r, p) in d.panels.iter().enumerate() {
             let span = p.series.last().map_or(1.0, |s| s.0.max(1.0));
-            let (dmin, dmax) = p.series.iter().fold((0.0_f64, 0.0_f64), |(a, b), s| (a.min(s.1), b.max(s.1)));
-            let (vmin, vmax) = p.series.iter().fold((0.0_f64, 0.0_f64), |(a, b), s| (a.min(s.2), b.max(s.2)));
+            let (dmin, dmax) = p
+                .series
+                .iter()
+                .fold((0.0_f64, 0.0_f64), |(a, b), s| (a.min(s.1), b.max(s.1)));
+            let (vmin, vmax) = p
+                .series
+                .iter()
+                .fold((0.0_f64, 0.0_f64), |(a, b), s| (a.min(s.2), b.max(s.2)));
             let pad = |lo: f64, hi: f64| {
                 let e = 0.08 * (hi - lo).max(1e-12);
                 (lo - e, hi + e)
@@ -58,13 +65,21 @@ pub fn plot(d: &Fig4Data) -> Result<String, RenderError> {
             let td: Vec<(f64, f64, bool)> = p.series.iter().map(|s| (s.0, s.1, s.3)).collect();
             for (line, c) in pieces(&td) {
                 let color = if c { CONTACT } else { FREE };
-                chart.draw_series(LineSeries::new(line, color.stroke_width(2))).map_err(drawing)?;
+                chart
+                    .draw_series(LineSeries::new(line, color.stroke_width(2)))
+                    .map_err(drawing)?;
             }
             chart
-                .draw_series(LineSeries::new(vec![(0.0, 0.0), (span, 0.0)], BLACK.mix(0.4)))
+                .draw_series(LineSeries::new(
+                    vec![(0.0, 0.0), (span, 0.0)],
+                    BLACK.mix(0.4),
+                ))
                 .map_err(drawing)?;
             let mut chart = ChartBuilder::on(&cells[2 * r + 1])
-                .caption(format!("N = {}: phase portrait", p.modes), ("sans-serif", 16))
+                .caption(
+                    format!("N = {}: phase portrait", p.modes),
+                    ("sans-serif", 16),
+                )
                 .margin(6)
                 .x_label_area_size(30)
                 .y_label_area_size(50)
@@ -79,7 +94,9 @@ pub fn plot(d: &Fig4Data) -> Result<String, RenderError> {
             let dv: Vec<(f64, f64, bool)> = p.series.iter().map(|s| (s.1, s.2, s.3)).collect();
             for (line, c) in pieces(&dv) {
                 let color = if c { CONTACT } else { FREE };
-                chart.draw_series(LineSeries::new(line, color.stroke_width(2))).map_err(drawing)?;
+                chart
+                    .draw_series(LineSeries::new(line, color.stroke_width(2)))
+                    .map_err(drawing)?;
             }
         }
         root.present().map_err(drawing)?;
@@ -88,7 +105,10 @@ pub fn plot(d: &Fig4Data) -> Result<String, RenderError> {
 }
 
 fn kinds(v: &[(OrbitKind, usize)]) -> String {
-    v.iter().map(|(k, c)| format!("{k}×{c}")).collect::<Vec<_>>().join(", ")
+    v.iter()
+        .map(|(k, c)| format!("{k}×{c}"))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// The markdown tables: orbits against the paper, then the robustness checks.
@@ -101,9 +121,17 @@ pub fn table(d: &Fig4Data) -> String {
                 p.modes.to_string(),
                 p.paper.to_string(),
                 p.kind.to_string(),
-                if p.kind == p.paper { "reproduced".into() } else { "**not reproduced**".into() },
+                if p.kind == p.paper {
+                    "reproduced".into()
+                } else {
+                    "**not reproduced**".into()
+                },
                 format_sig(p.residual, 1),
-                p.impact_velocities.iter().map(|v| format!("{v:.4}")).collect::<Vec<_>>().join(", "),
+                p.impact_velocities
+                    .iter()
+                    .map(|v| format!("{v:.4}"))
+                    .collect::<Vec<_>>()
+                    .join(", "),
                 p.contacts
                     .iter()
                     .map(|(a, b)| format!("{a:.4}–{b:.4}"))

@@ -3,6 +3,7 @@
 
 pub mod fig2;
 pub mod fig4;
+pub mod fig5;
 pub mod spectrum;
 pub mod work_precision;
 

@@ -178,7 +178,11 @@ pub fn random_orbits(
     counts.into_iter().collect()
 }
 
-fn panel(p: &Fig4Params, modes: usize, paper: OrbitKind) -> Result<Fig4Panel, crate::flow::FlowError> {
+fn panel(
+    p: &Fig4Params,
+    modes: usize,
+    paper: OrbitKind,
+) -> Result<Fig4Panel, crate::flow::FlowError> {
     let m = model(modes, p.k_over_k1, p.zeta1, p.omega_over_w1);
     let (amp, vamp) = free_amplitude(&m);
     let sim = Simulator::new(m.clone())?;
@@ -198,7 +202,11 @@ fn panel(p: &Fig4Params, modes: usize, paper: OrbitKind) -> Result<Fig4Panel, cr
         .filter(|s| in_last(s.0))
         .map(|&(t, d, v, c)| ((t - t0) / period, d / amp, v / vamp, c))
         .collect();
-    let window_events: Vec<_> = o.events.iter().filter(|e| in_last(e.time) && !e.grazing).collect();
+    let window_events: Vec<_> = o
+        .events
+        .iter()
+        .filter(|e| in_last(e.time) && !e.grazing)
+        .collect();
     let mut contacts = Vec::new();
     let mut open: Option<f64> = None;
     for e in &window_events {
@@ -232,14 +240,26 @@ fn panel(p: &Fig4Params, modes: usize, paper: OrbitKind) -> Result<Fig4Panel, cr
     let loose = orbit::settle(&loose_sim, &rest, p.transient, p.window, 0).kind;
     let reference = p.reference_rtol.map(|rtol| {
         let t_end = end as f64 * period;
-        let r = reference::integrate(&m, &rest, t_end, Tolerances { rtol, atol: rtol * 1e-3 });
+        let r = reference::integrate(
+            &m,
+            &rest,
+            t_end,
+            Tolerances {
+                rtol,
+                atol: rtol * 1e-3,
+            },
+        );
         let entries = r
             .events
             .iter()
             .filter(|e| e.entering && e.time >= t0 - 1e-9 * period)
             .count() as u64;
         let ours: Vec<_> = o.events.iter().filter(|e| !e.grazing).collect();
-        let theirs: Vec<_> = r.events.iter().filter(|e| e.time >= o.window_start as f64 * period).collect();
+        let theirs: Vec<_> = r
+            .events
+            .iter()
+            .filter(|e| e.time >= o.window_start as f64 * period)
+            .collect();
         let diff = (ours.len() == theirs.len()).then(|| {
             ours.iter()
                 .zip(&theirs)
@@ -249,7 +269,12 @@ fn panel(p: &Fig4Params, modes: usize, paper: OrbitKind) -> Result<Fig4Panel, cr
         (entries, diff)
     });
     let random_starts = random_orbits(&sim, p.random_starts, p.seed, p.transient, p.window);
-    let literal = Simulator::new(model(modes, p.k_over_k1, p.literal_caption_zeta1, p.omega_over_w1))?;
+    let literal = Simulator::new(model(
+        modes,
+        p.k_over_k1,
+        p.literal_caption_zeta1,
+        p.omega_over_w1,
+    ))?;
     let literal_caption = orbit::settle(&literal, &rest, p.transient, p.window, 0).kind;
     Ok(Fig4Panel {
         modes,

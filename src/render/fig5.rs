@@ -1,0 +1,157 @@
+//! Figure 5: impact velocities on the impact section against k, one panel per N.
+
+use super::{cell, drawing, markdown_table, RenderError, WIDTH};
+use crate::scenes::fig5::Fig5Data;
+use plotters::prelude::*;
+
+/// The SVG plot.
+pub fn plot(d: &Fig5Data) -> Result<String, RenderError> {
+    let rows = d.diagrams.len().max(1);
+    let mut svg = String::new();
+    {
+        let root =
+            SVGBackend::with_string(&mut svg, (WIDTH, 250 * rows as u32)).into_drawing_area();
+        root.fill(&WHITE).map_err(drawing)?;
+        let panels = root.split_evenly((rows, 1));
+        let (lo, hi) = d.params.k_over_k1_range;
+        let vmax = d
+            .diagrams
+            .iter()
+            .flat_map(|g| {
+                g.columns
+                    .iter()
+                    .flatten()
+                    .flat_map(|s| s.impact_velocities.iter())
+            })
+            .fold(0.0_f64, |a, &v| a.max(v))
+            * 1.05;
+        let letters = ["(a)", "(b)", "(c)", "(d)", "(e)", "(f)"];
+        for (p, g) in d.diagrams.iter().enumerate() {
+            let mut chart = ChartBuilder::on(&panels[p])
+                .caption(
+                    format!(
+                        "{} N = {}: impact velocity / (ω A_free)",
+                        letters[p % 6],
+                        g.modes
+                    ),
+                    ("sans-serif", 16),
+                )
+                .margin(6)
+                .x_label_area_size(30)
+                .y_label_area_size(46)
+                .build_cartesian_2d((lo..hi).log_scale(), 0.0..vmax.max(1e-9))
+                .map_err(drawing)?;
+            chart
+                .configure_mesh()
+                .x_desc("k / k₁")
+                .x_label_formatter(&|x| format!("{x:.0e}"))
+                .draw()
+                .map_err(drawing)?;
+            let points = g.columns.iter().zip(&d.k_over_k1).flat_map(|(col, &k)| {
+                col.iter()
+                    .flat_map(move |s| s.impact_velocities.iter().map(move |&v| (k, v)))
+            });
+            chart
+                .draw_series(
+                    points.map(|pt| Circle::new(pt, 1, RGBColor(0, 60, 140).mix(0.5).filled())),
+                )
+                .map_err(drawing)?;
+            let k2 = 39.27;
+            chart
+                .draw_series(DashedLineSeries::new(
+                    vec![(k2, 0.0), (k2, vmax)],
+                    4,
+                    4,
+                    RGBColor(213, 40, 0).stroke_width(1),
+                ))
+                .map_err(drawing)?;
+        }
+        root.present().map_err(drawing)?;
+    }
+    Ok(svg)
+}
+
+/// The markdown tables: orbit-set transitions per N, and the measured claims.
+pub fn table(d: &Fig5Data) -> String {
+    let mut rows = Vec::new();
+    for (n, ts) in &d.transitions {
+        let g = d.diagrams.iter().find(|g| g.modes == *n).expect("diagram");
+        let first = g
+            .kinds(0)
+            .iter()
+            .map(|k| k.to_string())
+            .collect::<Vec<_>>()
+            .join(" ");
+        rows.push(vec![
+            n.to_string(),
+            format!("start: {first}"),
+            String::new(),
+        ]);
+        for t in ts {
+            let set = |v: &[crate::orbit::OrbitKind]| {
+                v.iter()
+                    .map(|k| k.to_string())
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            };
+            rows.push(vec![
+                n.to_string(),
+                format!("{} → {}", set(&t.from), set(&t.to)),
+                format!("{}–{}", cell(t.between.0, 3), cell(t.between.1, 3)),
+            ]);
+        }
+    }
+    let mut s = markdown_table(&["N", "orbits reached (all starts)", "between k/k₁"], &rows);
+    let c = &d.claims;
+    let opt = |v: Option<f64>| v.map_or("never".to_string(), |k| cell(k, 3));
+    s.push('\n');
+    s.push_str(&markdown_table(
+        &["claim", "measured"],
+        &[
+            vec![
+                format!(
+                    "every N and start gives (1,1) at k = {} k₁",
+                    cell(d.k_over_k1[0], 2)
+                ),
+                c.all_one_one_at_smallest_k.to_string(),
+            ],
+            vec![
+                "spread of the impact velocity across N there".into(),
+                format!("{:.2}%", 100.0 * c.velocity_spread_at_smallest_k),
+            ],
+            vec![
+                "first k/k₁ with different orbits, N = 10 vs N = 1".into(),
+                opt(c.first_orbit_difference),
+            ],
+            vec![
+                "first k/k₁ with impact velocities > 5% apart, N = 10 vs N = 1".into(),
+                opt(c.first_velocity_difference),
+            ],
+            vec![
+                "fraction of k with the same orbits, N = 3 vs N = 10".into(),
+                format!("{:.0}%", 100.0 * c.n3_n10_agreement),
+            ],
+            vec![
+                "fraction of k with the same orbits, N = 2 vs N = 10".into(),
+                format!("{:.0}%", 100.0 * c.n2_n10_agreement),
+            ],
+            vec![
+                "first k/k₁ where N = 3 from rest reaches the paper's (1,3)".into(),
+                opt(c.n3_one_three_from),
+            ],
+            vec![
+                "k/k₁ where all four Fig 4 orbits (from rest) match the paper".into(),
+                if c.paper_figure4_set_at.is_empty() {
+                    "none".into()
+                } else {
+                    c.paper_figure4_set_at
+                        .iter()
+                        .map(|k| cell(*k, 3))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                },
+            ],
+        ],
+    ));
+    s
+}
