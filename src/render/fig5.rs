@@ -140,6 +140,22 @@ pub fn table(d: &Fig5Data) -> String {
                 opt(c.n3_one_three_from),
             ],
             vec![
+                "k/k₁ range where each N has the paper's Fig 4 orbit among its attractors".into(),
+                match (
+                    c.paper_figure4_set_reachable_at.first(),
+                    c.paper_figure4_set_reachable_at.last(),
+                ) {
+                    (Some(a), Some(b)) => format!(
+                        "{}–{} ({} of {} grid values)",
+                        cell(*a, 3),
+                        cell(*b, 3),
+                        c.paper_figure4_set_reachable_at.len(),
+                        d.k_over_k1.len()
+                    ),
+                    _ => "none".into(),
+                },
+            ],
+            vec![
                 "k/k₁ where all four Fig 4 orbits (from rest) match the paper".into(),
                 if c.paper_figure4_set_at.is_empty() {
                     "none".into()

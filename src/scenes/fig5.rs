@@ -137,6 +137,9 @@ pub struct Claims {
     /// The k/k₁ at which the orbits from rest match the paper's Figure 4 set
     /// (N = 1: (1,1), 2: (2,4), 3: (1,3), 10: (1,1)) all at once.
     pub paper_figure4_set_at: Vec<f64>,
+    /// The k/k₁ at which, for every N, some start reaches the paper's Figure 4 orbit (the
+    /// four orbits coexist as attractors, though not necessarily reached from rest).
+    pub paper_figure4_set_reachable_at: Vec<f64>,
     /// The smallest k/k₁ at which N = 3 from rest reaches the paper's (1,3).
     pub n3_one_three_from: Option<f64>,
 }
@@ -292,11 +295,23 @@ fn claims(grid: &[f64], diagrams: &[Diagram]) -> Claims {
         })
         .map(|i| grid[i])
         .collect();
+    let reachable =
+        |n: usize, i: usize, kind: OrbitKind| by_n(n).is_some_and(|d| d.kinds(i).contains(&kind));
+    let paper_figure4_set_reachable_at = (0..grid.len())
+        .filter(|&i| {
+            reachable(1, i, OrbitKind::Periodic { m: 1, n: 1 })
+                && reachable(2, i, OrbitKind::Periodic { m: 2, n: 4 })
+                && reachable(3, i, OrbitKind::Periodic { m: 1, n: 3 })
+                && reachable(10, i, OrbitKind::Periodic { m: 1, n: 1 })
+        })
+        .map(|i| grid[i])
+        .collect();
     let n3_one_three_from = (0..grid.len())
         .find(|&i| rest_kind(3, i) == periodic(1, 3))
         .map(|i| grid[i]);
     Claims {
         paper_figure4_set_at,
+        paper_figure4_set_reachable_at,
         n3_one_three_from,
         all_one_one_at_smallest_k,
         velocity_spread_at_smallest_k,
