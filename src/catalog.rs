@@ -281,6 +281,10 @@ fn run_fig5(resolution: Resolution) -> Result<SceneOutput, SceneError> {
         "k values matching all four Fig 4 orbits",
         c.paper_figure4_set_at.len() as i64,
     );
+    k.integer(
+        "k values where all four Fig 4 orbits are attractors",
+        c.paper_figure4_set_reachable_at.len() as i64,
+    );
     Ok(SceneOutput {
         key_numbers: k,
         table: render::fig5::table(&d),
