@@ -13,6 +13,7 @@
 //! - [`render`]: plots and tables of scene data (no numerics);
 //! - [`numerics`], [`error`], [`report`]: shared building blocks.
 
+pub mod asymptotics;
 pub mod catalog;
 pub mod continuum;
 pub mod error;
@@ -24,6 +25,7 @@ pub mod orbit;
 pub mod reference;
 pub mod render;
 pub mod report;
+pub mod restitution;
 pub mod scenes;
 pub mod simulate;
 pub mod simulator;
