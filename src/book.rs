@@ -18,8 +18,10 @@ use rayon::prelude::*;
 use std::path::Path;
 use std::time::Instant;
 
-/// Regenerates every scene (in parallel, with progress) and builds the book at `root`.
-pub fn build(root: &Path) -> Result<()> {
+/// Regenerates every scene (in parallel, with progress) at `resolution` and builds the
+/// book at `root`. The book uses [`Resolution::Book`]; the test suite builds it at
+/// [`Resolution::Test`] to check the pipeline without the full sweeps.
+pub fn build(root: &Path, resolution: Resolution) -> Result<()> {
     if !root.join("book.toml").exists() {
         bail!(
             "no book.toml in '{}': run from the repository root or pass --book-dir",
@@ -38,8 +40,7 @@ pub fn build(root: &Path) -> Result<()> {
         .par_iter()
         .map(|spec| {
             let t = Instant::now();
-            let out =
-                (spec.run)(Resolution::Book).with_context(|| format!("scene {}", spec.name))?;
+            let out = (spec.run)(resolution).with_context(|| format!("scene {}", spec.name))?;
             catalog::write(&out, &generated.join(spec.name))?;
             bar.inc(1);
             bar.set_message(spec.name);

@@ -80,6 +80,18 @@ pub fn all() -> &'static [SceneSpec] {
             run: run_fig2,
         },
         SceneSpec {
+            name: "fig3-abc",
+            paper: "Fig 3(a)-(c), §4.1-4.3",
+            summary: "one contact of the compliant model, k = eps^-2, vs r_e (eq 19) and [R]_N (eq 29), N = 1, 2, 3, 10",
+            run: run_fig3abc,
+        },
+        SceneSpec {
+            name: "fig3-d",
+            paper: "Fig 3(d), §4.4, eq (30)",
+            summary: "post-impact velocity profile for v- = e1, r_e = 1, N = 1..100: [R]_N and [R]_C",
+            run: run_fig3d,
+        },
+        SceneSpec {
             name: "fig4",
             paper: "Fig 4, §5.3",
             summary: "periodic orbits for N = 1, 2, 3, 10 at k = 100 k1 vs the paper's (1,1), (2,4), (1,3), (1,1)",
@@ -163,6 +175,57 @@ fn run_fig2(_: Resolution) -> Result<SceneOutput, SceneError> {
         key_numbers: k,
         table: render::fig2::table(&d),
         svg: render::fig2::plot(&d)?,
+        data: to_json(&d),
+    })
+}
+
+fn run_fig3abc(_: Resolution) -> Result<SceneOutput, SceneError> {
+    let d = scenes::fig3abc::compute(&Default::default())?;
+    let mut k = KeyNumbers::default();
+    for s in &d.series {
+        let key = format!("N={}", s.modes);
+        k.float(format!("{key} kappa"), s.kappa, 6);
+        // a regression slope over 9 points: 3 figures
+        k.float(format!("{key} observed_order"), s.observed_order, 3);
+        for (i, e) in d.params.eps.iter().enumerate().step_by(4) {
+            // exact simulation of one contact: the ratios are good to ~1e-12 relative;
+            // 8 figures are safe
+            for (j, v) in s.simulated[i].iter().take(2).enumerate() {
+                k.float(format!("{key} eps={e:.0e} mode{} ratio", j + 1), *v, 8);
+            }
+            k.float(format!("{key} eps={e:.0e} gap"), s.gap[i], 3);
+        }
+    }
+    Ok(SceneOutput {
+        key_numbers: k,
+        table: render::fig3abc::table(&d),
+        svg: render::fig3abc::plot(&d)?,
+        data: to_json(&d),
+    })
+}
+
+fn run_fig3d(_: Resolution) -> Result<SceneOutput, SceneError> {
+    let d = scenes::fig3d::compute(&Default::default())?;
+    let mut k = KeyNumbers::default();
+    for p in &d.profiles {
+        let key = format!("{} N={}", p.law, p.modes);
+        if let Some(e) = &p.error {
+            k.text(format!("{key} error"), e.clone());
+            continue;
+        }
+        // sums of O(N) terms of size O(1): good to ~1e-13; 8 figures
+        for (s, v) in d.params.probes.iter().zip(&p.at_probes) {
+            k.float(format!("{key} w_t({s})"), *v, 8);
+        }
+        k.float(format!("{key} l2_norm"), p.l2_norm, 8);
+        k.float(format!("{key} l2_distance_from_phi1"), p.l2_distance, 8);
+        // sampled on 801 points: 3 figures
+        k.float(format!("{key} max_distance_from_phi1"), p.max_distance, 3);
+    }
+    Ok(SceneOutput {
+        key_numbers: k,
+        table: render::fig3d::table(&d),
+        svg: render::fig3d::plot(&d)?,
         data: to_json(&d),
     })
 }

@@ -220,7 +220,8 @@ fn modes_command(modes: usize, k_over_k1: f64, json: bool) -> Result<(), Failure
 
 #[cfg(feature = "book")]
 fn book_command(book_dir: &std::path::Path) -> Result<(), Failure> {
-    impacting_cantilever::book::build(book_dir).map_err(|e| Failure::Other(format!("{e:#}")))
+    impacting_cantilever::book::build(book_dir, Resolution::Book)
+        .map_err(|e| Failure::Other(format!("{e:#}")))
 }
 
 #[cfg(not(feature = "book"))]

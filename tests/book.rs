@@ -25,7 +25,8 @@ fn book_builds_with_rendered_math_plots_and_tables() {
     let tmp = std::env::temp_dir().join(format!("cantilever-book-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&tmp);
     copy_tree(&Path::new(env!("CARGO_MANIFEST_DIR")).join("book"), &tmp);
-    impacting_cantilever::book::build(&tmp).expect("book builds");
+    impacting_cantilever::book::build(&tmp, impacting_cantilever::catalog::Resolution::Test)
+        .expect("book builds");
     let page = std::fs::read_to_string(tmp.join("build/fig2.html")).unwrap();
     assert!(page.contains("<math"), "math converted to MathML");
     assert!(!page.contains("&lt;mo"), "no MathML leaked as text");

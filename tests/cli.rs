@@ -20,9 +20,16 @@ fn cantilever(args: &[&str]) -> (i32, String, String) {
 fn unknown_scene_is_rejected_with_the_list_of_scenes() {
     let (code, _, err) = cantilever(&["scene", "nope"]);
     assert_eq!(code, 2);
+    let names: Vec<&str> = impacting_cantilever::catalog::all()
+        .iter()
+        .map(|s| s.name)
+        .collect();
     assert_eq!(
         err,
-        "error: invalid scene NAME: got nope; allowed: one of spectrum, fig2, work-precision\n"
+        format!(
+            "error: invalid scene NAME: got nope; allowed: one of {}\n",
+            names.join(", ")
+        )
     );
 }
 

@@ -233,3 +233,46 @@ fn figure_5_claims_at_test_resolution() {
     assert_eq!(c.paper_figure4_set_reachable_at.len(), 1);
     assert!((c.paper_figure4_set_reachable_at[0] / 215.443 - 1.0).abs() < 1e-3);
 }
+
+#[test]
+fn figure_3abc_one_contact_against_the_impact_laws() {
+    use impacting_cantilever::scenes::fig3abc::{compute, Fig3abcParams};
+    let d = compute(&Fig3abcParams::default()).unwrap();
+    let n1 = d.series.iter().find(|s| s.modes == 1).unwrap();
+    let one = n1.one_mode.as_ref().unwrap();
+    for (sim, exact) in one.simulated.iter().zip(&one.exact) {
+        // the exact simulator against the closed-form 1-DOF passage: round-off
+        assert!((sim - exact).abs() < 1e-12, "{sim} vs {exact}");
+    }
+    for s in &d.series {
+        // the gap to [R]_N(r_e) closes like ε² (the first-order theory's remainder); N = 10
+        // is pre-asymptotic over part of the range (k₁₀ ≈ 8e5 ~ ε⁻²): 1.83
+        let want = if s.modes == 10 { 1.8 } else { 2.0 };
+        assert!(
+            (s.observed_order - want).abs() < 0.1,
+            "N={}: {}",
+            s.modes,
+            s.observed_order
+        );
+        // the contact lasts πκ^{−1/2}ε (eq 18) to O(ε): within 1e-3 at ε = 1e-4
+        assert!((s.passage_ratio[0] - 1.0).abs() < 1e-3);
+    }
+    // "the effective coefficient of restitution of the first mode tends to zero" (N = 2)
+    let n2 = d.series.iter().find(|s| s.modes == 2).unwrap();
+    assert!(n2.simulated[0][0].abs() < 2e-5 && n2.simulated[0][1] > 0.9999);
+}
+
+#[test]
+fn figure_3d_profiles_converge_in_l2_to_the_pre_impact_profile_but_not_uniformly() {
+    use impacting_cantilever::scenes::fig3d::compute;
+    let d = compute(&Default::default()).unwrap();
+    for p in d.profiles.iter().filter(|p| p.law == "stiffness-limit") {
+        let n = p.modes as f64;
+        // exact identities of −[R]_N e₁ = e₁ − (2/N)𝟙 at r_e = 1: |·| = 1, |· − e₁| = 2/√N
+        assert!((p.l2_norm - 1.0).abs() < 1e-12);
+        assert!((p.l2_distance - 2.0 / n.sqrt()).abs() < 1e-12);
+        // the tip always rebounds: w_t(1) = −2 while φ₁(1) = 2, so the sup distance is 4
+        assert!((p.at_probes[3] + 2.0).abs() < 1e-11);
+        assert!((p.max_distance - 4.0).abs() < 1e-9);
+    }
+}

@@ -2,6 +2,8 @@
 //! `<text>` and so needs no system fonts) and markdown tables. No numerics here.
 
 pub mod fig2;
+pub mod fig3abc;
+pub mod fig3d;
 pub mod fig4;
 pub mod fig5;
 pub mod spectrum;

@@ -4,6 +4,8 @@
 //! scenes and the glue between the two is [`crate::catalog`].
 
 pub mod fig2;
+pub mod fig3abc;
+pub mod fig3d;
 pub mod fig4;
 pub mod fig5;
 pub mod spectrum;

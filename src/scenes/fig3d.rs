@@ -1,0 +1,152 @@
+//! Scene `fig3-d`: Figure 3(d) and §4.4 — the post-impact velocity profile
+//! w_t(s) = −φ(s)ᵀ[R]v⁻ (eq 30) for v⁻ = e₁ (the beam moving in its first mode) and r_e = 1,
+//! for N = 1, 2, 3, 10 and 100, with the stiffness-limit law [R]_N (eq 29) and, for
+//! comparison, the collocation law [R]_C (eq 12, equally spaced points).
+//!
+//! The non-convergence is quantified in three norms: the value at fixed s, the L² distance
+//! from the pre-impact profile φ₁ (= |η̇⁺ − e₁| for orthonormal modes) and the largest
+//! pointwise distance.
+
+use crate::continuum;
+use crate::error::ParameterError;
+use crate::restitution::{self, collocation, equally_spaced_points, stiffness_limit};
+use nalgebra::DVector;
+use serde::Serialize;
+
+/// What the scene computes.
+#[derive(Debug, Clone, Serialize)]
+pub struct Fig3dParams {
+    /// Truncations N.
+    pub modes: Vec<usize>,
+    /// r_e (and r for the collocation law).
+    pub restitution: f64,
+    /// Sample points of the profiles on [0, 1].
+    pub samples: usize,
+    /// Points at which values are tabulated.
+    pub probes: Vec<f64>,
+}
+
+impl Default for Fig3dParams {
+    fn default() -> Self {
+        Self {
+            modes: vec![1, 2, 3, 10, 100],
+            restitution: 1.0,
+            samples: 801,
+            probes: vec![0.25, 0.5, 0.75, 1.0],
+        }
+    }
+}
+
+/// One post-impact profile.
+#[derive(Debug, Clone, Serialize)]
+pub struct Profile {
+    /// "stiffness-limit" or "collocation".
+    pub law: String,
+    /// N.
+    pub modes: usize,
+    /// w_t at the sample points (None if the law could not be built).
+    pub values: Option<Vec<f64>>,
+    /// w_t at the probe points.
+    pub at_probes: Vec<f64>,
+    /// ‖w_t‖_{L²} = |η̇⁺|.
+    pub l2_norm: f64,
+    /// ‖w_t − φ₁‖_{L²} = |η̇⁺ − e₁|.
+    pub l2_distance: f64,
+    /// max over the samples of |w_t − φ₁|.
+    pub max_distance: f64,
+    /// Why the law is missing, if it is.
+    pub error: Option<String>,
+}
+
+/// The scene's result.
+#[derive(Debug, Clone, Serialize)]
+pub struct Fig3dData {
+    /// The parameters used.
+    pub params: Fig3dParams,
+    /// The sample points.
+    pub s: Vec<f64>,
+    /// φ₁ at the sample points (the pre-impact profile).
+    pub phi1: Vec<f64>,
+    /// All profiles, stiffness-limit first.
+    pub profiles: Vec<Profile>,
+}
+
+fn profile(
+    law: &str,
+    n: usize,
+    post: Result<DVector<f64>, ParameterError>,
+    p: &Fig3dParams,
+    s: &[f64],
+    phi1: &[f64],
+) -> Result<Profile, ParameterError> {
+    let post = match post {
+        Ok(v) => v,
+        Err(e) => {
+            return Ok(Profile {
+                law: law.into(),
+                modes: n,
+                values: None,
+                at_probes: vec![],
+                l2_norm: f64::NAN,
+                l2_distance: f64::NAN,
+                max_distance: f64::NAN,
+                error: Some(e.to_string()),
+            });
+        }
+    };
+    let modes: Vec<_> = (1..=n)
+        .map(continuum::free_mode)
+        .collect::<Result<_, _>>()?;
+    let w = |x: f64| -> f64 {
+        modes
+            .iter()
+            .zip(post.iter())
+            .map(|(m, u)| m.value(x) * u)
+            .sum()
+    };
+    let values: Vec<f64> = s.iter().map(|&x| w(x)).collect();
+    let mut e1 = DVector::zeros(n);
+    e1[0] = 1.0;
+    Ok(Profile {
+        law: law.into(),
+        modes: n,
+        at_probes: p.probes.iter().map(|&x| w(x)).collect(),
+        l2_norm: post.norm(),
+        l2_distance: (&post - e1).norm(),
+        max_distance: values
+            .iter()
+            .zip(phi1)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max),
+        values: Some(values),
+        error: None,
+    })
+}
+
+/// Runs the scene.
+pub fn compute(p: &Fig3dParams) -> Result<Fig3dData, ParameterError> {
+    let s: Vec<f64> = (0..p.samples)
+        .map(|i| i as f64 / (p.samples - 1) as f64)
+        .collect();
+    let phi = continuum::free_mode(1)?;
+    let phi1: Vec<f64> = s.iter().map(|&x| phi.value(x)).collect();
+    let mut profiles = Vec::new();
+    for law in ["stiffness-limit", "collocation"] {
+        for &n in &p.modes {
+            let mut pre = DVector::zeros(n);
+            pre[0] = 1.0;
+            let r = match law {
+                "stiffness-limit" => stiffness_limit(n, p.restitution),
+                _ => collocation(n, p.restitution, &equally_spaced_points(n)),
+            };
+            let post = r.map(|r| restitution::apply(&r, &pre));
+            profiles.push(profile(law, n, post, p, &s, &phi1)?);
+        }
+    }
+    Ok(Fig3dData {
+        params: p.clone(),
+        s,
+        phi1,
+        profiles,
+    })
+}
