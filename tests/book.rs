@@ -40,18 +40,34 @@ fn book_builds_with_rendered_math_plots_and_tables() {
     assert!(tmp
         .join("build/assets/math/font/latinmodern-math.woff2")
         .exists());
-    for chapter in [
+    let chapters = [
         "introduction",
         "model",
         "verification",
         "spectrum",
+        "fig2",
+        "restitution",
+        "fig3abc",
+        "fig3d",
+        "fig4",
+        "fig5",
+        "simulator",
+        "work-precision",
         "errata",
-    ] {
+        "reproducing",
+    ];
+    for chapter in chapters {
         let html = std::fs::read_to_string(tmp.join(format!("build/{chapter}.html"))).unwrap();
         assert!(!html.contains("&lt;mo"), "{chapter}: MathML leaked as text");
         assert!(
             !html.contains("{{#include"),
             "{chapter}: unresolved include"
+        );
+        // a table markdown could not parse shows up as its raw separator row (with smart
+        // punctuation, `---` becomes an em dash)
+        assert!(
+            !html.contains("|---") && !html.contains("|—"),
+            "{chapter}: a table did not render"
         );
     }
     std::fs::remove_dir_all(&tmp).ok();

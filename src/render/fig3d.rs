@@ -75,7 +75,7 @@ pub fn table(d: &Fig3dData) -> String {
     header.extend([
         "L² norm".to_string(),
         "L² distance from φ₁".to_string(),
-        "max |w_t − φ₁|".to_string(),
+        "max over s of the distance from φ₁".to_string(),
     ]);
     let rows: Vec<Vec<String>> = d
         .profiles
