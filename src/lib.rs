@@ -26,6 +26,7 @@ pub mod reference;
 pub mod render;
 pub mod report;
 pub mod restitution;
+pub mod rigid;
 pub mod scenes;
 pub mod simulate;
 pub mod simulator;

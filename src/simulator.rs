@@ -52,7 +52,8 @@ impl Clock {
         self.cycles as f64 * self.period + self.offset
     }
 
-    fn advance(&mut self, s: f64) {
+    /// Advances the clock by s (whole periods are carried into `cycles`).
+    pub fn advance(&mut self, s: f64) {
         self.offset += s;
         while self.offset >= self.period {
             self.offset -= self.period;
@@ -511,6 +512,29 @@ impl Simulator {
         } else {
             1.0
         }
+    }
+
+    /// Free flight (the − region's exact flow) from `x` at `clock` for at most `horizon`:
+    /// the certified first time the tip reaches d₀, if any, and the state then (or at the
+    /// horizon). The rigid-impact model ([`crate::rigid`]) is built on it.
+    pub fn free_flight(
+        &self,
+        x: &DVector<f64>,
+        clock: &Clock,
+        horizon: f64,
+        stats: &mut Stats,
+    ) -> (Option<f64>, DVector<f64>) {
+        let seg = Segment::new(
+            &self.free,
+            x,
+            self.free.omega * clock.offset,
+            self.model.params.gap,
+        );
+        stats.segments += 1;
+        let h_min = H_MIN_FRACTION * self.period();
+        let crossing = seg.first_crossing(horizon, h_min, self.settings.root_tolerance, stats);
+        let state = seg.state(crossing.unwrap_or(horizon));
+        (crossing, state)
     }
 
     fn flow(&self, region: Region) -> &RegionFlow {
