@@ -187,13 +187,13 @@ fn run_fig3abc(_: Resolution) -> Result<SceneOutput, SceneError> {
         k.float(format!("{key} kappa"), s.kappa, 6);
         // a regression slope over 9 points: 3 figures
         k.float(format!("{key} observed_order"), s.observed_order, 3);
-        for (i, e) in d.params.eps.iter().enumerate().step_by(4) {
+        for (i, e) in d.params.eps.iter().enumerate() {
             // exact simulation of one contact: the ratios are good to ~1e-12 relative;
             // 8 figures are safe
             for (j, v) in s.simulated[i].iter().take(2).enumerate() {
-                k.float(format!("{key} eps={e:.0e} mode{} ratio", j + 1), *v, 8);
+                k.float(format!("{key} eps={e:.3e} mode{} ratio", j + 1), *v, 8);
             }
-            k.float(format!("{key} eps={e:.0e} gap"), s.gap[i], 3);
+            k.float(format!("{key} eps={e:.3e} gap"), s.gap[i], 3);
         }
     }
     Ok(SceneOutput {

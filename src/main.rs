@@ -84,6 +84,27 @@ enum Command {
     },
 }
 
+/// Writes to stdout; a closed pipe (`cantilever … | head`) ends the program quietly
+/// instead of panicking.
+fn emit(text: &str) {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    if let Err(e) = out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        if e.kind() == std::io::ErrorKind::BrokenPipe {
+            std::process::exit(0);
+        }
+        eprintln!("error: cannot write to stdout: {e}");
+        std::process::exit(1);
+    }
+}
+
+/// `println!` through [`emit`].
+macro_rules! outln {
+    ($($arg:tt)*) => {
+        emit(&format!("{}\n", format!($($arg)*)))
+    };
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match run(cli) {
@@ -123,7 +144,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
     match cli.command {
         Command::List => {
             for s in catalog::all() {
-                println!("{:<10} {:<22} {}", s.name, s.paper, s.summary);
+                outln!("{:<10} {:<22} {}", s.name, s.paper, s.summary);
             }
             Ok(())
         }
@@ -138,9 +159,9 @@ fn run(cli: Cli) -> Result<(), Failure> {
                     "paper": spec.paper,
                     "key_numbers": output.key_numbers.to_json(),
                 });
-                println!("{}", serde_json::to_string_pretty(&doc).expect("json"));
+                outln!("{}", serde_json::to_string_pretty(&doc).expect("json"));
             } else {
-                println!("{}", output.table);
+                outln!("{}", output.table);
                 eprintln!("wrote {}", dir.display());
             }
             Ok(())
@@ -174,12 +195,12 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 simulate::Error::Flow(f) => Failure::Other(f.to_string()),
             })?;
             if json {
-                println!(
+                outln!(
                     "{}",
                     serde_json::to_string_pretty(&report.to_json()).expect("json")
                 );
             } else {
-                print!("{}", report.to_text());
+                emit(&report.to_text());
             }
             Ok(())
         }
@@ -202,7 +223,7 @@ fn modes_command(modes: usize, k_over_k1: f64, json: bool) -> Result<(), Failure
             "i": i + 1, "lambda": l, "exact": exact, "rel_error": (l - exact) / exact
         }));
         if !json {
-            println!(
+            outln!(
                 "i = {:>3}  lambda = {:>22.15e}  exact = {:>22.15e}  rel. error = {:>10.3e}",
                 i + 1,
                 l,
@@ -213,7 +234,7 @@ fn modes_command(modes: usize, k_over_k1: f64, json: bool) -> Result<(), Failure
     }
     if json {
         let doc = serde_json::json!({"modes": modes, "k_over_k1": k_over_k1, "eigenvalues": rows});
-        println!("{}", serde_json::to_string_pretty(&doc).expect("json"));
+        outln!("{}", serde_json::to_string_pretty(&doc).expect("json"));
     }
     Ok(())
 }

@@ -186,3 +186,38 @@ fn simulate_reports_null_period_when_not_settled() {
     assert!(v["period_m"].is_null());
     assert!(v["periodicity_residual"].as_f64().unwrap() > 1e-9);
 }
+
+#[test]
+fn a_closed_pipe_ends_quietly_instead_of_panicking() {
+    use std::io::Read;
+    use std::process::Stdio;
+    // ~3000 periods of events as JSON: far more than a pipe buffer holds
+    let mut child = Command::new(env!("CARGO_BIN_EXE_cantilever"))
+        .args([
+            "simulate",
+            "--modes",
+            "1",
+            "--stop-stiffness",
+            "100",
+            "--zeta1",
+            "0.01",
+            "--omega",
+            "2",
+            "--periods",
+            "0",
+            "--record",
+            "3000",
+            "--json",
+        ])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = [0u8; 64];
+    child.stdout.take().unwrap().read_exact(&mut first).unwrap();
+    // the reading end is now closed; the rest of the output hits a broken pipe
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!err.contains("panicked"), "{err}");
+    assert_eq!(out.status.code(), Some(0));
+}
