@@ -199,6 +199,8 @@ struct Segment<'a> {
     reals: Vec<(f64, f64)>,
     /// |φ(1)ᵀX|: the forced tip amplitude.
     forced_amplitude: f64,
+    /// Σ|a_k| + |φ(1)ᵀX| + |tip static| + |d₀|: the signal's magnitude scale at s = 0.
+    scale0: f64,
 }
 
 /// g and its derivatives at a point, with bounds valid from that point on.
@@ -241,6 +243,11 @@ impl<'a> Segment<'a> {
                 pairs.push((a, flow.lambda[k], a.norm(), flow.lambda[k].norm()));
             }
         }
+        let scale0 = pairs.iter().map(|p| p.2).sum::<f64>()
+            + reals.iter().map(|r: &(f64, f64)| r.0.abs()).sum::<f64>()
+            + flow.tip_forced.norm()
+            + flow.tip_static.abs()
+            + gap.abs();
         Self {
             flow,
             w,
@@ -252,6 +259,7 @@ impl<'a> Segment<'a> {
             },
             gap,
             pairs,
+            scale0,
             reals,
             forced_amplitude: flow.tip_forced.norm(),
         }
@@ -267,9 +275,17 @@ impl<'a> Segment<'a> {
         let amp = self.forced_amplitude;
         let (mut b2, mut b3) = (w * w * amp, w * w * w * amp);
         let mut scale = amp + f.tip_static.abs() + self.gap.abs();
+        // below this a term is smaller than g's round-off: its phase (a sincos) is skipped,
+        // its magnitude still enters the bounds, so certification is unaffected
+        let negligible = 1e-17 * self.scale0;
         for &(a, l, a_abs, l_abs) in &self.pairs {
             let decay = decay(l.re * s);
-            if decay == 0.0 {
+            let mag = a_abs * decay;
+            if mag <= negligible {
+                let l2 = l_abs * l_abs;
+                b2 += mag * l2;
+                b3 += mag * l2 * l_abs;
+                scale += mag;
                 continue;
             }
             let z = a * Complex64::from_polar(decay, l.im * s);
@@ -277,7 +293,6 @@ impl<'a> Segment<'a> {
             d += z.re;
             v += zl.re;
             acc += (zl * l).re;
-            let mag = a_abs * decay;
             let l2 = l_abs * l_abs;
             b2 += mag * l2;
             b3 += mag * l2 * l_abs;
