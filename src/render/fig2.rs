@@ -1,7 +1,7 @@
 //! Figure 2: eigenfrequencies of K⁺ (solid) and of the continuum (dashed) against k, for
 //! each N (panels a–c), and λ_N/(kN) (panel d).
 
-use super::{cell, drawing, markdown_table, palette, RenderError, WIDTH};
+use super::{cell, draw_legend, drawing, markdown_table, palette, RenderError, WIDTH};
 use crate::scenes::fig2::Fig2Data;
 use plotters::prelude::*;
 
@@ -99,13 +99,7 @@ pub fn plot(d: &Fig2Data) -> Result<String, RenderError> {
                 .label(format!("N = {}", t.modes))
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c));
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .draw()
-            .map_err(drawing)?;
+        draw_legend(&mut chart, SeriesLabelPosition::UpperRight)?;
         root.present().map_err(drawing)?;
     }
     Ok(svg)

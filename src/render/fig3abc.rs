@@ -1,7 +1,7 @@
 //! Figure 3(a)–(c): simulated return velocities against the impact laws, and the gap's
 //! convergence for every N.
 
-use super::{drawing, markdown_table, palette, RenderError, WIDTH};
+use super::{draw_legend, drawing, markdown_table, palette, RenderError, WIDTH};
 use crate::report::format_sig;
 use crate::scenes::fig3abc::Fig3abcData;
 use plotters::prelude::*;
@@ -54,13 +54,7 @@ fn panel<DB: DrawingBackend>(
         .map_err(drawing)?
         .label(labels.1)
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK));
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::LowerLeft)
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .draw()
-        .map_err(drawing)?;
+    draw_legend(&mut chart, SeriesLabelPosition::LowerLeft)?;
     Ok(())
 }
 
@@ -142,13 +136,7 @@ pub fn plot(d: &Fig3abcData) -> Result<String, RenderError> {
                 .label(format!("N = {} (order {:.2})", s.modes, s.observed_order))
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c));
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .draw()
-            .map_err(drawing)?;
+        draw_legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
         root.present().map_err(drawing)?;
     }
     Ok(svg)

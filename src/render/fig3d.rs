@@ -1,7 +1,7 @@
 //! Figure 3(d): post-impact velocity profiles per N, for the stiffness-limit and the
 //! collocation laws, with the pre-impact profile φ₁ dashed.
 
-use super::{drawing, markdown_table, palette, RenderError, WIDTH};
+use super::{draw_legend, drawing, markdown_table, palette, RenderError, WIDTH};
 use crate::scenes::fig3d::Fig3dData;
 use plotters::prelude::*;
 
@@ -55,13 +55,7 @@ pub fn plot(d: &Fig3dData) -> Result<String, RenderError> {
                     .label(format!("N = {}", p.modes))
                     .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c));
             }
-            chart
-                .configure_series_labels()
-                .position(SeriesLabelPosition::LowerLeft)
-                .background_style(WHITE.mix(0.8))
-                .border_style(BLACK)
-                .draw()
-                .map_err(drawing)?;
+            draw_legend(&mut chart, SeriesLabelPosition::LowerLeft)?;
         }
         root.present().map_err(drawing)?;
     }

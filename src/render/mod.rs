@@ -24,6 +24,24 @@ pub fn drawing<E: std::fmt::Debug>(e: E) -> RenderError {
     RenderError(format!("{e:?}"))
 }
 
+/// Draws the series labels of `chart` in a framed, half-transparent box at `position`.
+pub fn draw_legend<'a, DB, CT>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    position: SeriesLabelPosition,
+) -> Result<(), RenderError>
+where
+    DB: DrawingBackend + 'a,
+    CT: plotters::coord::CoordTranslate,
+{
+    chart
+        .configure_series_labels()
+        .position(position)
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()
+        .map_err(drawing)
+}
+
 /// The colour of series `i` (a colour-blind-safe palette, Wong 2011).
 pub fn palette(i: usize) -> RGBColor {
     const C: [RGBColor; 8] = [

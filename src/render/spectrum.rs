@@ -1,7 +1,7 @@
 //! The continuum spectrum: (β_i^+)² across k with the small-k law (4) and the
 //! clamped-pinned asymptotes; the remainder of (4) against k.
 
-use super::{cell, drawing, markdown_table, palette, RenderError, WIDTH};
+use super::{cell, draw_legend, drawing, markdown_table, palette, RenderError, WIDTH};
 use crate::report::format_sig;
 use crate::scenes::spectrum::SpectrumData;
 use plotters::prelude::*;
@@ -60,13 +60,7 @@ pub fn plot(d: &SpectrumData) -> Result<String, RenderError> {
                 ))
                 .map_err(drawing)?;
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .draw()
-            .map_err(drawing)?;
+        draw_legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
 
         let s = &d.small_k;
         let k1 = d.k1;
@@ -106,13 +100,7 @@ pub fn plot(d: &SpectrumData) -> Result<String, RenderError> {
             .map_err(drawing)?
             .label("second-order theory, c·k²")
             .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], palette(1)));
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .draw()
-            .map_err(drawing)?;
+        draw_legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
         root.present().map_err(drawing)?;
     }
     Ok(svg)

@@ -1,7 +1,7 @@
 //! Error against run time: event-time error and end-state error against wall time, one
 //! series per method.
 
-use super::{drawing, markdown_table, palette, RenderError, WIDTH};
+use super::{draw_legend, drawing, markdown_table, palette, RenderError, WIDTH};
 use crate::report::format_sig;
 use crate::scenes::work_precision::WorkPrecisionData;
 use plotters::prelude::*;
@@ -66,13 +66,7 @@ pub fn plot(d: &WorkPrecisionData) -> Result<String, RenderError> {
                     .draw_series(pts.iter().map(|&p| Circle::new(p, 4, c.filled())))
                     .map_err(drawing)?;
             }
-            chart
-                .configure_series_labels()
-                .position(SeriesLabelPosition::UpperMiddle)
-                .background_style(WHITE.mix(0.8))
-                .border_style(BLACK)
-                .draw()
-                .map_err(drawing)?;
+            draw_legend(&mut chart, SeriesLabelPosition::UpperMiddle)?;
         }
         root.present().map_err(drawing)?;
     }
