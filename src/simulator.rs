@@ -438,7 +438,7 @@ impl<'a> Segment<'a> {
         None
     }
 
-    /// The root in [lo, hi] (g(lo) < 0 ≤ g(hi)) by Newton's method on the exact ġ,
+    /// The root in [lo, hi] (g(lo) < 0 ≤ g(hi)) by Halley's method on the exact ġ and g̈,
     /// safeguarded by bisection so the iterate never leaves the shrinking bracket; it
     /// stops at the requested relative tolerance or at g's round-off floor.
     fn polish(
@@ -467,9 +467,17 @@ impl<'a> Segment<'a> {
             } else {
                 hi = s;
             }
-            let newton = s - p.g / p.gd;
-            let next = if p.gd != 0.0 && newton > lo && newton < hi {
-                newton
+            // Halley's step (cubic convergence; g̈ is exact and free), Newton's if Halley's
+            // denominator degenerates, bisection if the step leaves the bracket
+            let den = 2.0 * p.gd * p.gd - p.g * p.gdd;
+            let step = if den != 0.0 && den.is_finite() {
+                2.0 * p.g * p.gd / den
+            } else {
+                p.g / p.gd
+            };
+            let candidate = s - step;
+            let next = if step.is_finite() && candidate > lo && candidate < hi {
+                candidate
             } else {
                 0.5 * (lo + hi)
             };
