@@ -13,7 +13,7 @@
 //! **Certified advancement.** From s with g < 0, g(s + h) ≤ g + ġh + Mh²/2 < 0 for
 //! h < h* = (−ġ + √(ġ² − 2Mg))/M: no root can hide in [s, s + h*). When ġ − M·2h* > 0, g is
 //! increasing on [s, s + 2h*] and one evaluation at s + 2h* decides whether the unique root
-//! there exists; it is then polished by Brent's method to round-off. The paper instead
+//! there exists; it is then polished by Halley's method (bracketed) to round-off. The paper instead
 //! brackets extrema by golden-section search (§5.2), which has no such guarantee.
 //!
 //! **Resolution.** Steps are never shorter than `h_min` = 1e-13 of a forcing period, so a
@@ -158,7 +158,7 @@ pub struct Trace {
 /// Simulation settings.
 #[derive(Debug, Clone, Copy)]
 pub struct Settings {
-    /// Relative tolerance of Brent's polish of a switching time (default 1e-15).
+    /// Relative tolerance of the (Halley) polish of a switching time (default 1e-15).
     pub root_tolerance: f64,
 }
 
