@@ -4,7 +4,7 @@
 //! ∫φ_iφ_j = δ_ij and φ_i(1) = 2 ([`crate::continuum::free_mode`]). Then
 //!
 //! ```text
-//! η̈ + [C] η̇ + [K^±] η = F^±(t),                                   (34)
+//! η̈ + \[C\] η̇ + \[K^±\] η = F^±(t),                                   (34)
 //! K⁻ = diag(k_j),  K⁺ = K⁻ + (k/4) φ(1)φ(1)ᵀ = K⁻ + k·11ᵀ,           (9)
 //! C = diag(2α + γ k_j),                                            (34)
 //! F⁺ = F⁻ + (k d₀/4) φ(1),   F⁻_j(t) = ∫ φ_j f(s) ds · cos ωt,      (8)–(9)
@@ -167,7 +167,7 @@ pub struct GalerkinModel {
     pub modal_stiffness: DVector<f64>,
     /// φ(1): every entry is 2.
     pub tip: DVector<f64>,
-    /// Diagonal of [C]: 2α + γk_j.
+    /// Diagonal of \[C\]: 2α + γk_j.
     pub damping: DVector<f64>,
     /// Modal forcing amplitudes f_j = ∫φ_j f ds (zero without forcing).
     pub forcing_amplitude: DVector<f64>,
@@ -207,7 +207,7 @@ impl GalerkinModel {
         self.beta.len()
     }
 
-    /// [K^±]: diag(k_j), plus k·11ᵀ in contact (eq 9).
+    /// \[K^±\]: diag(k_j), plus k·11ᵀ in contact (eq 9).
     pub fn stiffness(&self, region: Region) -> DMatrix<f64> {
         let mut k = DMatrix::from_diagonal(&self.modal_stiffness);
         if region == Region::Contact {
@@ -216,7 +216,7 @@ impl GalerkinModel {
         k
     }
 
-    /// [C] = diag(2α + γk_j) (eq 34).
+    /// \[C\] = diag(2α + γk_j) (eq 34).
     pub fn damping_matrix(&self) -> DMatrix<f64> {
         DMatrix::from_diagonal(&self.damping)
     }
@@ -273,7 +273,7 @@ impl GalerkinModel {
         }
     }
 
-    /// [A^±] = [[0, I], [−K^±, −C]] of eq (35), 2N × 2N.
+    /// \[A^±\] = [[0, I], [−K^±, −C]] of eq (35), 2N × 2N.
     pub fn state_matrix(&self, region: Region) -> DMatrix<f64> {
         let n = self.modes();
         let mut a = DMatrix::zeros(2 * n, 2 * n);

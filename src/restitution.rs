@@ -1,14 +1,14 @@
 //! Modal restitution laws of the rigid-impact limit: §3–4, eqs (10)–(14) and (24)–(29).
 //!
 //! An N-mode impact law maps pre-impact to post-impact modal velocities,
-//! η̇⁺ = −[R] η̇⁻ (eq 11), applied when φ(1)ᵀη = d₀ with φ(1)ᵀη̇ > 0. Three laws:
+//! η̇⁺ = −\[R\] η̇⁻ (eq 11), applied when φ(1)ᵀη = d₀ with φ(1)ᵀη̇ > 0. Three laws:
 //!
-//! - **collocation** [R]_C (eq 12, Wagg & Bishop): Newton's law at the tip and unchanged
+//! - **collocation** \[R\]_C (eq 12, Wagg & Bishop): Newton's law at the tip and unchanged
 //!   velocity at N − 1 collocation points s_j; non-unique (it depends on the s_j);
-//! - **impulse-response** [R]_IR (eq 14, Vyasarayani et al.): the tip velocity is reversed
+//! - **impulse-response** \[R\]_IR (eq 14, Vyasarayani et al.): the tip velocity is reversed
 //!   by an impulsive tip force, η̇⁺ = η̇⁻ − ((r+1)/N) 𝟙 𝟙ᵀη̇⁻; eq (14) is labelled "2DOF" but
 //!   holds for any N (errata E6);
-//! - **stiffness-limit** [R]_N (eqs 28–29): the k → ∞ limit of the compliant model, with the
+//! - **stiffness-limit** \[R\]_N (eqs 28–29): the k → ∞ limit of the compliant model, with the
 //!   effective coefficient r_e of eq (19).
 //!
 //! Deviation: eq (25) as printed is the negative of eq (24) (errata E4);
@@ -33,7 +33,7 @@ fn check(n: usize, r: f64) -> Result<(), ParameterError> {
     Ok(())
 }
 
-/// [R]_IR of eq (14): (1/N)[(r + 1)𝟙𝟙ᵀ − N I].
+/// \[R\]_IR of eq (14): (1/N)[(r + 1)𝟙𝟙ᵀ − N I].
 pub fn impulse_response(n: usize, r: f64) -> Result<DMatrix<f64>, ParameterError> {
     check(n, r)?;
     let nf = n as f64;
@@ -42,7 +42,7 @@ pub fn impulse_response(n: usize, r: f64) -> Result<DMatrix<f64>, ParameterError
     }))
 }
 
-/// [R]_N of eq (29): (1 − 2r_e) I + ((3r_e − 1)/N) 𝟙𝟙ᵀ.
+/// \[R\]_N of eq (29): (1 − 2r_e) I + ((3r_e − 1)/N) 𝟙𝟙ᵀ.
 pub fn stiffness_limit(n: usize, r_e: f64) -> Result<DMatrix<f64>, ParameterError> {
     check(n, r_e)?;
     let nf = n as f64;
@@ -51,7 +51,7 @@ pub fn stiffness_limit(n: usize, r_e: f64) -> Result<DMatrix<f64>, ParameterErro
     }))
 }
 
-/// [R]_N from eq (28): V diag(1 − 2r_e, …, 1 − 2r_e, r_e) Vᵀ for an orthogonal V whose last
+/// \[R\]_N from eq (28): V diag(1 − 2r_e, …, 1 − 2r_e, r_e) Vᵀ for an orthogonal V whose last
 /// column is the fast (stop) mode. With V from the eigenvectors of K⁺ as k → ∞ this is
 /// eq (29); for finite k it is the law the compliant model's own eigenvectors imply.
 pub fn from_eigenvectors(v: &DMatrix<f64>, r_e: f64) -> DMatrix<f64> {
@@ -63,7 +63,7 @@ pub fn from_eigenvectors(v: &DMatrix<f64>, r_e: f64) -> DMatrix<f64> {
     v * d * v.transpose()
 }
 
-/// [V] of eq (21): the k → ∞ eigenvectors of K⁺ for N = 2, slow mode first.
+/// \[V\] of eq (21): the k → ∞ eigenvectors of K⁺ for N = 2, slow mode first.
 pub fn two_mode_eigenvectors() -> DMatrix<f64> {
     let s = std::f64::consts::FRAC_1_SQRT_2;
     DMatrix::from_row_slice(2, 2, &[s, s, -s, s])
@@ -83,7 +83,7 @@ pub fn equally_spaced_points(n: usize) -> Vec<f64> {
     (1..n).map(|j| j as f64 / n as f64).collect()
 }
 
-/// [R]_C of eq (12) with collocation points `points` (N − 1 distinct values in (0, 1)) and
+/// \[R\]_C of eq (12) with collocation points `points` (N − 1 distinct values in (0, 1)) and
 /// the impact at s_I = 1: Φ⁻¹ diag(−1, …, −1, r) Φ, Φ's rows φ(s_j)ᵀ and φ(1)ᵀ.
 pub fn collocation(n: usize, r: f64, points: &[f64]) -> Result<DMatrix<f64>, ParameterError> {
     check(n, r)?;
@@ -138,7 +138,7 @@ pub fn collocation(n: usize, r: f64, points: &[f64]) -> Result<DMatrix<f64>, Par
     Ok(inv * d * phi)
 }
 
-/// Post-impact modal velocities η̇⁺ = −[R]η̇⁻ (eq 11).
+/// Post-impact modal velocities η̇⁺ = −\[R\]η̇⁻ (eq 11).
 pub fn apply(r: &DMatrix<f64>, pre: &nalgebra::DVector<f64>) -> nalgebra::DVector<f64> {
     -(r * pre)
 }

@@ -1,6 +1,6 @@
 //! The rigid-impact N-mode model (§3, eqs 10–11): exact free flight between impacts
 //! ([`crate::simulator::Simulator::free_flight`], certified contact detection), and at
-//! φ(1)ᵀη = d₀ with approaching tip velocity the modal law η̇⁺ = −[R]η̇⁻ of any of the three
+//! φ(1)ᵀη = d₀ with approaching tip velocity the modal law η̇⁺ = −\[R\]η̇⁻ of any of the three
 //! restitution laws ([`crate::restitution`]).
 //!
 //! **Chattering policy** (impacts accumulating in finite time; never an endless loop):
@@ -95,11 +95,11 @@ pub struct RigidRun {
     pub stats: Stats,
 }
 
-/// The rigid-impact model: the free flow of `sim` and the modal law `law` ([R]).
+/// The rigid-impact model: the free flow of `sim` and the modal law `law` (\[R\]).
 pub struct RigidImpact {
     /// The simulator whose free flow is used (its contact flow is not).
     pub sim: Simulator,
-    /// [R].
+    /// \[R\].
     pub law: DMatrix<f64>,
     /// The chattering policy.
     pub settings: RigidSettings,

@@ -5,7 +5,7 @@
 //! contact), simulated exactly until the tip leaves the stop. The return velocities are
 //! compared with:
 //! - N = 1: (v⁻/v⁺)² against r_e² (eq 19, κ = 1) and the exact e^{−2απ/ω_d};
-//! - N ≥ 2: −η̇⁻/(ε⁻¹) against the first column of [R]_N (eq 29) with r_e from κ = kNε² = N.
+//! - N ≥ 2: −η̇⁻/(ε⁻¹) against the first column of \[R\]_N (eq 29) with r_e from κ = kNε² = N.
 //!   For N = 2 the paper plots modes 1 and 2: R₁₁ = (1 − r_e)/2 → 0 ("mode 1's CoR tends to
 //!   zero") and R₂₁ = (3r_e − 1)/2.
 
@@ -53,7 +53,7 @@ pub struct Series {
     pub kappa: f64,
     /// Per ε: −η̇⁻/ε⁻¹ (the post-contact modal velocities, sign flipped, per unit v⁺).
     pub simulated: Vec<Vec<f64>>,
-    /// Per ε: the first column of [R]_N(r_e(ε)).
+    /// Per ε: the first column of \[R\]_N(r_e(ε)).
     pub predicted: Vec<Vec<f64>>,
     /// Per ε: max_j |simulated_j − predicted_j|.
     pub gap: Vec<f64>,

@@ -1,7 +1,7 @@
 //! Scene `fig3-d`: Figure 3(d) and §4.4 — the post-impact velocity profile
-//! w_t(s) = −φ(s)ᵀ[R]v⁻ (eq 30) for v⁻ = e₁ (the beam moving in its first mode) and r_e = 1,
-//! for N = 1, 2, 3, 10 and 100, with the stiffness-limit law [R]_N (eq 29) and, for
-//! comparison, the collocation law [R]_C (eq 12, equally spaced points).
+//! w_t(s) = −φ(s)ᵀ\[R\]v⁻ (eq 30) for v⁻ = e₁ (the beam moving in its first mode) and r_e = 1,
+//! for N = 1, 2, 3, 10 and 100, with the stiffness-limit law \[R\]_N (eq 29) and, for
+//! comparison, the collocation law \[R\]_C (eq 12, equally spaced points).
 //!
 //! The non-convergence is quantified in three norms: the value at fixed s, the L² distance
 //! from the pre-impact profile φ₁ (= |η̇⁺ − e₁| for orthonormal modes) and the largest
