@@ -24,6 +24,18 @@ fn fig4(n: usize) -> GalerkinModel {
     .unwrap()
 }
 
+/// A linear model: N modes, material damping ζ₁, eq (37) forcing at ω/(β₁⁻)², and the stop
+/// out of reach (d₀ = 10⁶), so the flow never switches.
+fn out_of_reach(n: usize, zeta1: f64, omega_over_w1: f64) -> GalerkinModel {
+    GalerkinModel::new(
+        GalerkinParams::new(n, 100.0 * k1())
+            .with_gap(1e6)
+            .with_zeta1(zeta1)
+            .with_forcing(Forcing::paper(omega_over_w1 * w1())),
+    )
+    .unwrap()
+}
+
 /// Closed form of ẍ + cẋ + kx = F cos ωt, underdamped, from (x0, v0).
 fn oscillator(k: f64, c: f64, f: f64, omega: f64, x0: f64, v0: f64, t: f64) -> (f64, f64) {
     let den = (k - omega * omega).powi(2) + (c * omega).powi(2);
@@ -44,13 +56,7 @@ fn oscillator(k: f64, c: f64, f: f64, omega: f64, x0: f64, v0: f64, t: f64) -> (
 #[test]
 fn reference_integrator_matches_the_closed_form_forced_oscillator() {
     // One mode, stop far away (gap 1e6): ẍ + C₁₁ẋ + k₁x = f₁ cos ωt.
-    let m = GalerkinModel::new(
-        GalerkinParams::new(1, 100.0 * k1())
-            .with_gap(1e6)
-            .with_zeta1(0.05)
-            .with_forcing(Forcing::paper(1.3 * w1())),
-    )
-    .unwrap();
+    let m = out_of_reach(1, 0.05, 1.3);
     let x0 = DVector::from_vec(vec![0.2, -0.4]);
     let t = 10.0;
     let (xe, ve) = oscillator(
@@ -89,13 +95,7 @@ fn reference_integrator_matches_the_closed_form_forced_oscillator() {
 
 #[test]
 fn exact_simulator_matches_the_closed_form_forced_oscillator() {
-    let m = GalerkinModel::new(
-        GalerkinParams::new(1, 0.0)
-            .with_gap(1e6)
-            .with_zeta1(0.05)
-            .with_forcing(Forcing::paper(1.3 * w1())),
-    )
-    .unwrap();
+    let m = out_of_reach(1, 0.05, 1.3);
     let sim = Simulator::new(m.clone()).unwrap();
     let x0 = DVector::from_vec(vec![0.2, -0.4]);
     let (x, _) = sim.run(&x0, 7, Observe::default());
@@ -337,13 +337,7 @@ fn nothing_is_recorded_unless_asked() {
 fn forcing_phase_stays_exact_over_long_runs() {
     // Linear (stop out of reach), damped: after 10⁴ periods the transient is e^{-300}
     // and the state at ωt = 0 mod 2π must be the particular solution x_p(0) to round-off.
-    let m = GalerkinModel::new(
-        GalerkinParams::new(3, 0.0)
-            .with_gap(1e6)
-            .with_zeta1(0.01)
-            .with_forcing(Forcing::paper(2.0 * w1())),
-    )
-    .unwrap();
+    let m = out_of_reach(3, 0.01, 2.0);
     let sim = Simulator::new(m).unwrap();
     let (x, _) = sim.run(&DVector::zeros(6), 10_000, Observe::default());
     let xp = sim.free.particular(0.0);
