@@ -51,27 +51,8 @@ enum Command {
     /// Simulate the N-mode bilinear model from rest with the forcing of eq (37) (unit tip
     /// amplitude at resonance), then record contact events and detect periodicity.
     Simulate {
-        /// N, the number of modes.
-        #[arg(long)]
-        modes: usize,
-        /// Stop stiffness as k/k₁.
-        #[arg(long, allow_negative_numbers = true)]
-        stop_stiffness: f64,
-        /// Gap d₀.
-        #[arg(long, allow_negative_numbers = true, default_value_t = 0.0)]
-        gap: f64,
-        /// ζ₁, the first mode's damping ratio (material damping).
-        #[arg(long, allow_negative_numbers = true)]
-        zeta1: f64,
-        /// Forcing frequency as ω/(β₁⁻)².
-        #[arg(long, allow_negative_numbers = true)]
-        omega: f64,
-        /// Periods simulated (and discarded) before recording.
-        #[arg(long)]
-        periods: u64,
-        /// Periods recorded after that.
-        #[arg(long, default_value_t = 32)]
-        record: u64,
+        #[command(flatten)]
+        args: simulate::Args,
         /// Print JSON.
         #[arg(long)]
         json: bool,
@@ -171,25 +152,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             stop_stiffness,
             json,
         } => modes_command(modes, stop_stiffness, json),
-        Command::Simulate {
-            modes,
-            stop_stiffness,
-            gap,
-            zeta1,
-            omega,
-            periods,
-            record,
-            json,
-        } => {
-            let args = simulate::Args {
-                modes,
-                stop_stiffness,
-                gap,
-                zeta1,
-                omega,
-                periods,
-                record,
-            };
+        Command::Simulate { args, json } => {
             let report = simulate::run(&args).map_err(|e| match e {
                 simulate::Error::Parameter(p) => Failure::BadInput(p),
                 simulate::Error::Flow(f) => Failure::Other(f.to_string()),

@@ -13,22 +13,29 @@ use crate::simulator::{Clock, EnergyBudget, Event, Observe, Simulator};
 use nalgebra::DVector;
 use std::time::Instant;
 
-/// The command's inputs.
-#[derive(Debug, Clone)]
+/// The command's inputs (also its command-line flags).
+#[derive(Debug, Clone, clap::Args)]
 pub struct Args {
-    /// N.
+    /// N, the number of modes.
+    #[arg(long)]
     pub modes: usize,
-    /// k/k₁.
+    /// Stop stiffness as k/k₁.
+    #[arg(long, allow_negative_numbers = true)]
     pub stop_stiffness: f64,
-    /// d₀.
+    /// Gap d₀.
+    #[arg(long, allow_negative_numbers = true, default_value_t = 0.0)]
     pub gap: f64,
-    /// ζ₁.
+    /// ζ₁, the first mode's damping ratio (material damping).
+    #[arg(long, allow_negative_numbers = true)]
     pub zeta1: f64,
-    /// ω/(β₁⁻)².
+    /// Forcing frequency as ω/(β₁⁻)².
+    #[arg(long, allow_negative_numbers = true)]
     pub omega: f64,
-    /// Transient periods.
+    /// Periods simulated (and discarded) before recording.
+    #[arg(long)]
     pub periods: u64,
-    /// Recorded periods.
+    /// Periods recorded after that.
+    #[arg(long, default_value_t = 32)]
     pub record: u64,
 }
 
