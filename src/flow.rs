@@ -15,10 +15,15 @@
 //! digits at N = 20, k = 10⁷. The paper evaluates the convolution of eq (36) "by parts";
 //! the complex solve for X is the same thing in closed form.
 //!
+//! The coefficients w are carried as 2N real *modal coordinates* (real and imaginary parts
+//! of w_k for each conjugate pair, w_k for each real eigenvalue), so projecting a state onto
+//! the eigenbasis and back are real 2N×2N matrix–vector products.
+//!
 //! Only the forcing *phase* enters x_p, so callers pass the phase ωt mod 2π, kept exactly
 //! by counting whole periods (see [`crate::simulator`]).
 
 use crate::galerkin::{GalerkinModel, Region};
+use crate::numerics::polar;
 use nalgebra::{DMatrix, DVector};
 use num_complex::Complex64;
 
@@ -43,6 +48,24 @@ pub enum FlowError {
     Unstable(f64),
 }
 
+/// One real term of the homogeneous solution: a complex-conjugate pair of eigenvalues
+/// (two real modal coordinates, the real and imaginary part of w_k) or a real eigenvalue
+/// (one coordinate).
+#[derive(Debug, Clone, Copy)]
+pub struct ModalTerm {
+    /// λ_k, the member of a pair with Im λ_k > 0.
+    pub lambda: Complex64,
+    /// A conjugate pair (`true`) or a real eigenvalue.
+    pub pair: bool,
+    /// Index of its first real modal coordinate.
+    pub slot: usize,
+    /// Index k of λ_k in [`RegionFlow::lambda`] and of v_k in [`RegionFlow::v`].
+    pub index: usize,
+    /// Its tip signal per unit w_k: φ(1)ᵀv_k, doubled for a pair (whose real contribution
+    /// is Re(2 φ(1)ᵀv_k w_k e^{λ_k s})).
+    pub tip: Complex64,
+}
+
 /// The exact flow of one region.
 #[derive(Debug, Clone)]
 pub struct RegionFlow {
@@ -56,28 +79,24 @@ pub struct RegionFlow {
     pub v: DMatrix<Complex64>,
     /// V⁻¹.
     pub v_inv: DMatrix<Complex64>,
-    /// Real and imaginary parts of the rows of V⁻¹ at the half-spectrum indices, in the
-    /// order of `half`, contiguous: a segment's set-up is two real dot products per row.
-    pub v_inv_half: Vec<(Vec<f64>, Vec<f64>)>,
-    /// Columns of V for the complex pairs (index, real part, imaginary part), contiguous.
-    state_pairs: Vec<(usize, Vec<f64>, Vec<f64>)>,
-    /// Columns of V for the real eigenvalues (index, column), real arithmetic.
-    state_reals: Vec<(usize, Vec<f64>)>,
+    /// The homogeneous solution's real terms, one per conjugate pair or real eigenvalue.
+    pub terms: Vec<ModalTerm>,
+    /// Real 2N×2N map from x − x_p to the real modal coordinates y (the rows of V⁻¹ of
+    /// the terms; real and imaginary parts for a pair): one real matrix-vector product.
+    to_modal: DMatrix<f64>,
+    /// Real 2N×2N map from the evolved coordinates ỹ(s) back to the state: the columns of
+    /// V (2 Re v_k and −2 Im v_k for a pair, v_k for a real eigenvalue).
+    from_modal: DMatrix<f64>,
     /// X with (iωI − A)X = b̂: the complex amplitude of the forced response.
     pub forced: DVector<Complex64>,
     /// x_s: the static response to the stop preload.
     pub static_state: DVector<f64>,
     /// ω.
     pub omega: f64,
-    /// φ(1)ᵀ V_η (the tip displacement of each eigenvector).
-    pub tip_of_mode: Vec<Complex64>,
     /// φ(1)ᵀ X_η.
     pub tip_forced: Complex64,
     /// φ(1)ᵀ η_s.
     pub tip_static: f64,
-    /// Indices k of the eigenvalues kept in real sums: Im λ_k ≥ 0, with the weight 2 for a
-    /// complex pair and 1 for a real eigenvalue.
-    pub half: Vec<(usize, f64)>,
     /// ‖V‖₁‖V⁻¹‖₁.
     pub condition: f64,
 }
@@ -119,40 +138,46 @@ impl RegionFlow {
                 .ok_or(FlowError::Eigen)?;
             static_state.rows_mut(0, n).copy_from(&eta);
         }
-        let tip_of_mode = (0..2 * n)
-            .map(|k| (0..n).map(|i| v[(i, k)] * model.tip[i]).sum())
-            .collect();
+        let tip_of_mode =
+            |k: usize| -> Complex64 { (0..n).map(|i| v[(i, k)] * model.tip[i]).sum() };
         let tip_forced = (0..n).map(|i| forced[i] * model.tip[i]).sum();
         let tip_static = (0..n).map(|i| static_state[i] * model.tip[i]).sum();
-        let half = conjugate_halves(&lambda);
-        let v_inv_half = half
-            .iter()
-            .map(|&(k, _)| {
-                let row = v_inv.row(k);
-                (
-                    row.iter().map(|z| z.re).collect(),
-                    row.iter().map(|z| z.im).collect(),
-                )
-            })
-            .collect();
-        let mut state_pairs = Vec::new();
-        let mut state_reals = Vec::new();
-        for &(k, weight) in &half {
-            let col = v.column(k);
-            if weight == 1.0 {
-                state_reals.push((k, col.iter().map(|z| z.re).collect()));
+        let mut terms = Vec::new();
+        let mut to_modal = DMatrix::zeros(2 * n, 2 * n);
+        let mut from_modal = DMatrix::zeros(2 * n, 2 * n);
+        let mut slot = 0;
+        for (k, pair) in conjugate_halves(&lambda) {
+            let (row, col) = (v_inv.row(k), v.column(k));
+            to_modal.row_mut(slot).copy_from(&row.map(|z| z.re));
+            if pair {
+                to_modal.row_mut(slot + 1).copy_from(&row.map(|z| z.im));
+                // x_h = Re(2 v_k w_k e^{λs}) = 2 Re v_k · Re c − 2 Im v_k · Im c
+                from_modal
+                    .column_mut(slot)
+                    .copy_from(&col.map(|z| 2.0 * z.re));
+                from_modal
+                    .column_mut(slot + 1)
+                    .copy_from(&col.map(|z| -2.0 * z.im));
             } else {
-                state_pairs.push((
-                    k,
-                    col.iter().map(|z| 2.0 * z.re).collect(),
-                    col.iter().map(|z| 2.0 * z.im).collect(),
-                ));
+                from_modal.column_mut(slot).copy_from(&col.map(|z| z.re));
             }
+            terms.push(ModalTerm {
+                lambda: if pair {
+                    lambda[k]
+                } else {
+                    Complex64::new(lambda[k].re, 0.0)
+                },
+                pair,
+                slot,
+                index: k,
+                tip: tip_of_mode(k) * if pair { 2.0 } else { 1.0 },
+            });
+            slot += if pair { 2 } else { 1 };
         }
         Ok(Self {
-            v_inv_half,
-            state_pairs,
-            state_reals,
+            terms,
+            to_modal,
+            from_modal,
             region,
             modes: n,
             lambda,
@@ -161,17 +186,15 @@ impl RegionFlow {
             forced,
             static_state,
             omega,
-            tip_of_mode,
             tip_forced,
             tip_static,
-            half,
             condition,
         })
     }
 
     /// x_p at forcing phase θ = ωt: Re(X e^{iθ}) + x_s.
     pub fn particular(&self, phase: f64) -> DVector<f64> {
-        let e = Complex64::from_polar(1.0, phase);
+        let e = polar(1.0, phase);
         DVector::from_iterator(
             2 * self.modes,
             self.forced
@@ -181,31 +204,39 @@ impl RegionFlow {
         )
     }
 
-    /// Homogeneous coefficients w = V⁻¹(x − x_p(θ)) for state `x` at phase θ.
-    pub fn coefficients(&self, x: &DVector<f64>, phase: f64) -> DVector<Complex64> {
-        let r = (x - self.particular(phase)).map(|v| Complex64::new(v, 0.0));
-        &self.v_inv * r
+    /// The real modal coordinates y of state `x` at forcing phase θ: the real and
+    /// imaginary parts of w = V⁻¹(x − x_p(θ)) over the terms.
+    pub fn modal(&self, x: &DVector<f64>, phase: f64) -> DVector<f64> {
+        &self.to_modal * (x - self.particular(phase))
     }
 
-    /// The state s after a point with coefficients `w` and phase θ (only the
-    /// half-spectrum entries of `w` are read; the others are their conjugates).
-    pub fn state(&self, w: &DVector<Complex64>, phase: f64, s: f64) -> DVector<f64> {
+    /// The complex coefficient w_k of a term.
+    pub fn coefficient(&self, y: &DVector<f64>, term: &ModalTerm) -> Complex64 {
+        if term.pair {
+            Complex64::new(y[term.slot], y[term.slot + 1])
+        } else {
+            Complex64::new(y[term.slot], 0.0)
+        }
+    }
+
+    /// The state s after a point with modal coordinates `y` and forcing phase θ.
+    pub fn state(&self, y: &DVector<f64>, phase: f64, s: f64) -> DVector<f64> {
+        let mut evolved = DVector::zeros(y.len());
+        for t in &self.terms {
+            let e = decay(t.lambda.re * s);
+            if e == 0.0 {
+                continue;
+            }
+            if t.pair {
+                let c = self.coefficient(y, t) * polar(e, t.lambda.im * s);
+                evolved[t.slot] = c.re;
+                evolved[t.slot + 1] = c.im;
+            } else {
+                evolved[t.slot] = y[t.slot] * e;
+            }
+        }
         let mut x = self.particular(phase + self.omega * s);
-        for (k, re, im) in &self.state_pairs {
-            let l = self.lambda[*k];
-            let c = w[*k] * Complex64::from_polar(decay(l.re * s), l.im * s);
-            for (xi, (a, b)) in x.iter_mut().zip(re.iter().zip(im)) {
-                *xi += a * c.re - b * c.im;
-            }
-        }
-        for (k, col) in &self.state_reals {
-            let c = w[*k].re * decay(self.lambda[*k].re * s);
-            if c != 0.0 {
-                for (xi, a) in x.iter_mut().zip(col) {
-                    *xi += a * c;
-                }
-            }
-        }
+        x.gemv(1.0, &self.from_modal, &evolved, 1.0);
         x
     }
 }
@@ -220,8 +251,8 @@ pub fn decay(x: f64) -> f64 {
     }
 }
 
-/// Indices of eigenvalues with Im ≥ 0 and their weights in a real sum (2 for a pair).
-fn conjugate_halves(lambda: &[Complex64]) -> Vec<(usize, f64)> {
+/// Indices of eigenvalues with Im ≥ 0, each marked as a conjugate pair or a real one.
+fn conjugate_halves(lambda: &[Complex64]) -> Vec<(usize, bool)> {
     let mut used = vec![false; lambda.len()];
     let mut half = Vec::new();
     for k in 0..lambda.len() {
@@ -230,7 +261,7 @@ fn conjugate_halves(lambda: &[Complex64]) -> Vec<(usize, f64)> {
         }
         used[k] = true;
         if lambda[k].im == 0.0 {
-            half.push((k, 1.0));
+            half.push((k, false));
             continue;
         }
         // its conjugate partner: the closest unused eigenvalue to conj(λ_k)
@@ -243,7 +274,7 @@ fn conjugate_halves(lambda: &[Complex64]) -> Vec<(usize, f64)> {
             })
             .expect("complex eigenvalues of a real matrix come in pairs");
         used[partner] = true;
-        half.push((if lambda[k].im > 0.0 { k } else { partner }, 2.0));
+        half.push((if lambda[k].im > 0.0 { k } else { partner }, true));
     }
     half
 }

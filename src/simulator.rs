@@ -26,6 +26,7 @@
 
 use crate::flow::{decay, FlowError, RegionFlow};
 use crate::galerkin::{GalerkinModel, Region};
+use crate::numerics::polar;
 use nalgebra::DVector;
 use num_complex::Complex64;
 
@@ -183,24 +184,55 @@ pub struct Simulator {
     pub settings: Settings,
 }
 
+/// A complex-pair term Re(a e^{λs}) of a segment's tip signal.
+#[derive(Debug, Clone, Copy)]
+struct PairTerm {
+    /// a_k = 2 φ(1)ᵀv_k w_k.
+    a: Complex64,
+    lambda: Complex64,
+    a_abs: f64,
+    lambda_abs: f64,
+    /// From this s on, |a e^{λs}| ≤ the segment's negligible size.
+    negligible_from: f64,
+}
+
+/// A real-eigenvalue term a e^{λs} of a segment's tip signal (an over-damped mode).
+#[derive(Debug, Clone, Copy)]
+struct RealTerm {
+    a: f64,
+    lambda: f64,
+    negligible_from: f64,
+}
+
 /// The homogeneous and forced tip signal of one segment.
 struct Segment<'a> {
     flow: &'a RegionFlow,
-    /// Homogeneous coefficients, only at the half-spectrum indices (the rest are their
-    /// conjugates); zero elsewhere.
-    w: DVector<Complex64>,
+    /// Real modal coordinates at the segment's start.
+    y: DVector<f64>,
     phase0: f64,
     /// +1 in free flight (g = d − d₀), −1 in contact (g = d₀ − d).
     sign: f64,
     gap: f64,
-    /// (a_k = 2·tip_k·w_k, λ_k, |a_k|, |λ_k|) for the complex pairs (one of each pair).
-    pairs: Vec<(Complex64, Complex64, f64, f64)>,
-    /// (a_k = tip_k·w_k, λ_k) for the real (over-damped) eigenvalues, in real arithmetic.
-    reals: Vec<(f64, f64)>,
+    pairs: Vec<PairTerm>,
+    reals: Vec<RealTerm>,
     /// |φ(1)ᵀX|: the forced tip amplitude.
     forced_amplitude: f64,
-    /// Σ|a_k| + |φ(1)ᵀX| + |tip static| + |d₀|: the signal's magnitude scale at s = 0.
-    scale0: f64,
+    /// A term below this (1e-17 of Σ|a_k| + |φ(1)ᵀX| + |tip static| + |d₀|, the signal's
+    /// magnitude scale at s = 0) is below g's round-off: its value is skipped, and
+    /// 2·`negligible` stands in for its magnitude in the bounds, so no exp or sincos is
+    /// spent on a decayed mode and certification is unaffected.
+    negligible: f64,
+}
+
+/// The first s ≥ 0 from which |a| e^{Re λ s} ≤ `negligible` (Re λ ≤ 0).
+fn negligible_from(a_abs: f64, lambda_re: f64, negligible: f64) -> f64 {
+    if a_abs <= negligible {
+        0.0
+    } else if lambda_re < 0.0 {
+        (negligible / a_abs).ln() / lambda_re
+    } else {
+        f64::INFINITY
+    }
 }
 
 /// g and its derivatives at a point, with bounds valid from that point on.
@@ -219,38 +251,41 @@ struct Local {
 
 impl<'a> Segment<'a> {
     fn new(flow: &'a RegionFlow, x: &DVector<f64>, phase0: f64, gap: f64) -> Self {
-        let r = x - flow.particular(phase0);
-        let n2 = r.len();
-        let mut w = DVector::zeros(n2);
+        let y = flow.modal(x, phase0);
         let (mut pairs, mut reals) = (Vec::new(), Vec::new());
-        for (&(k, weight), (re, im)) in flow.half.iter().zip(&flow.v_inv_half) {
-            // row k of V⁻¹ times the real residual (a real row for a real eigenvalue)
-            let wk = if weight == 1.0 {
-                Complex64::new(re.iter().zip(r.iter()).map(|(a, x)| a * x).sum(), 0.0)
+        let mut scale0 = flow.tip_forced.norm() + flow.tip_static.abs() + gap.abs();
+        for t in &flow.terms {
+            let a = t.tip * flow.coefficient(&y, t);
+            if t.pair {
+                // |a| without hypot's overflow guard (slow, and amplitudes are O(1))
+                let a_abs = a.norm_sqr().sqrt();
+                scale0 += a_abs;
+                pairs.push(PairTerm {
+                    a,
+                    lambda: t.lambda,
+                    a_abs,
+                    lambda_abs: t.lambda.norm_sqr().sqrt(),
+                    negligible_from: 0.0,
+                });
             } else {
-                let (mut wr, mut wi) = (0.0, 0.0);
-                for ((a, b), x) in re.iter().zip(im).zip(r.iter()) {
-                    wr += a * x;
-                    wi += b * x;
-                }
-                Complex64::new(wr, wi)
-            };
-            w[k] = wk;
-            let a = flow.tip_of_mode[k] * wk * weight;
-            if weight == 1.0 {
-                reals.push((a.re, flow.lambda[k].re));
-            } else {
-                pairs.push((a, flow.lambda[k], a.norm(), flow.lambda[k].norm()));
+                scale0 += a.re.abs();
+                reals.push(RealTerm {
+                    a: a.re,
+                    lambda: t.lambda.re,
+                    negligible_from: 0.0,
+                });
             }
         }
-        let scale0 = pairs.iter().map(|p| p.2).sum::<f64>()
-            + reals.iter().map(|r: &(f64, f64)| r.0.abs()).sum::<f64>()
-            + flow.tip_forced.norm()
-            + flow.tip_static.abs()
-            + gap.abs();
+        let negligible = 1e-17 * scale0;
+        for p in &mut pairs {
+            p.negligible_from = negligible_from(p.a_abs, p.lambda.re, negligible);
+        }
+        for r in &mut reals {
+            r.negligible_from = negligible_from(r.a.abs(), r.lambda, negligible);
+        }
         Self {
             flow,
-            w,
+            y,
             phase0,
             sign: if flow.region == Region::Free {
                 1.0
@@ -259,9 +294,9 @@ impl<'a> Segment<'a> {
             },
             gap,
             pairs,
-            scale0,
             reals,
             forced_amplitude: flow.tip_forced.norm(),
+            negligible,
         }
     }
 
@@ -270,43 +305,45 @@ impl<'a> Segment<'a> {
     fn local(&self, s: f64) -> Local {
         let f = self.flow;
         let w = f.omega;
-        let pf = f.tip_forced * Complex64::from_polar(1.0, self.phase0 + w * s);
+        let pf = f.tip_forced * polar(1.0, self.phase0 + w * s);
         let (mut d, mut v, mut acc) = (pf.re + f.tip_static, -w * pf.im, -w * w * pf.re);
         let amp = self.forced_amplitude;
         let (mut b2, mut b3) = (w * w * amp, w * w * w * amp);
         let mut scale = amp + f.tip_static.abs() + self.gap.abs();
-        // below this a term is smaller than g's round-off: its phase (a sincos) is skipped,
-        // its magnitude still enters the bounds, so certification is unaffected
-        let negligible = 1e-17 * self.scale0;
-        for &(a, l, a_abs, l_abs) in &self.pairs {
-            let decay = decay(l.re * s);
-            let mag = a_abs * decay;
-            if mag <= negligible {
-                let l2 = l_abs * l_abs;
-                b2 += mag * l2;
-                b3 += mag * l2 * l_abs;
-                scale += mag;
-                continue;
-            }
-            let z = a * Complex64::from_polar(decay, l.im * s);
-            let zl = z * l;
-            d += z.re;
-            v += zl.re;
-            acc += (zl * l).re;
-            let l2 = l_abs * l_abs;
+        // a decayed term's magnitude is ≤ negligible; twice that absorbs the rounding of
+        // its `negligible_from`
+        let tiny = 2.0 * self.negligible;
+        for t in &self.pairs {
+            let l2 = t.lambda_abs * t.lambda_abs;
+            let mag = if s >= t.negligible_from {
+                tiny
+            } else {
+                let decay = decay(t.lambda.re * s);
+                let z = t.a * polar(decay, t.lambda.im * s);
+                let zl = z * t.lambda;
+                d += z.re;
+                v += zl.re;
+                acc += (zl * t.lambda).re;
+                t.a_abs * decay
+            };
             b2 += mag * l2;
-            b3 += mag * l2 * l_abs;
+            b3 += mag * l2 * t.lambda_abs;
             scale += mag;
         }
-        for &(a, l) in &self.reals {
-            let z = a * decay(l * s);
-            d += z;
-            v += z * l;
-            acc += z * l * l;
-            let mag = z.abs() * l * l;
-            b2 += mag;
-            b3 += mag * l.abs();
-            scale += z.abs();
+        for t in &self.reals {
+            let l2 = t.lambda * t.lambda;
+            let mag = if s >= t.negligible_from {
+                tiny
+            } else {
+                let z = t.a * decay(t.lambda * s);
+                d += z;
+                v += z * t.lambda;
+                acc += z * l2;
+                z.abs()
+            };
+            b2 += mag * l2;
+            b3 += mag * l2 * t.lambda.abs();
+            scale += mag;
         }
         Local {
             g: self.sign * (d - self.gap),
@@ -330,18 +367,18 @@ impl<'a> Segment<'a> {
         let pairs: f64 = self
             .pairs
             .iter()
-            .map(|&(_, l, a_abs, l_abs)| a_abs * l_abs * decay(l.re * s))
+            .map(|t| t.a_abs * t.lambda_abs * decay(t.lambda.re * s))
             .sum();
         let reals: f64 = self
             .reals
             .iter()
-            .map(|&(a, l)| (a * l * decay(l * s)).abs())
+            .map(|t| (t.a * t.lambda * decay(t.lambda * s)).abs())
             .sum();
         f.omega * self.forced_amplitude + pairs + reals
     }
 
     fn state(&self, s: f64) -> DVector<f64> {
-        self.flow.state(&self.w, self.phase0, s)
+        self.flow.state(&self.y, self.phase0, s)
     }
 
     /// A step h > 0 such that g < 0 on [s, s + h) is proven, from two upper bounds of g:
@@ -750,13 +787,14 @@ fn segment_energy(seg: &Segment, model: &GalerkinModel, s_end: f64) -> (f64, f64
     let n = f.modes;
     // velocity components u_m (length N) and exponents μ_m
     let mut us: Vec<(Vec<Complex64>, Complex64)> = Vec::with_capacity(2 * n + 2);
-    for &(k, weight) in &f.half {
-        let u: Vec<Complex64> = (0..n).map(|i| f.v[(n + i, k)] * seg.w[k]).collect();
-        if weight == 2.0 {
+    for t in &f.terms {
+        let w = f.coefficient(&seg.y, t);
+        let u: Vec<Complex64> = (0..n).map(|i| f.v[(n + i, t.index)] * w).collect();
+        if t.pair {
             // the conjugate partner carries the conjugate term
-            us.push((u.iter().map(|z| z.conj()).collect(), f.lambda[k].conj()));
+            us.push((u.iter().map(|z| z.conj()).collect(), t.lambda.conj()));
         }
-        us.push((u, f.lambda[k]));
+        us.push((u, t.lambda));
     }
     if f.omega > 0.0 {
         let e = Complex64::from_polar(0.5, seg.phase0);

@@ -50,8 +50,8 @@ fn check(n: usize, k_over_k1: f64, zeta1: f64, gap: f64, s: f64) -> f64 {
             0.3 * ((i as f64 + 1.0) * 1.7).sin() / (1.0 + i as f64)
         });
         let phase = 0.7;
-        let w = flow.coefficients(&x0, phase);
-        let ours = flow.state(&w, phase, s);
+        let y = flow.modal(&x0, phase);
+        let ours = flow.state(&y, phase, s);
         let reference = expm_solution(&m, region, &x0, phase, s);
         let err = (&ours - &reference).amax() / reference.amax().max(x0.amax());
         worst = worst.max(err);
