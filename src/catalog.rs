@@ -26,6 +26,8 @@ pub struct SceneOutput {
     pub data: serde_json::Value,
     /// A markdown table.
     pub table: String,
+    /// Further markdown tables, written as `<name>.md` beside `table.md`.
+    pub extra_tables: Vec<(&'static str, String)>,
     /// An SVG plot.
     pub svg: String,
 }
@@ -145,6 +147,7 @@ fn run_spectrum(_: Resolution) -> Result<SceneOutput, SceneError> {
         4,
     );
     Ok(SceneOutput {
+        extra_tables: Vec::new(),
         key_numbers: k,
         table: render::spectrum::table(&d),
         svg: render::spectrum::plot(&d)?,
@@ -172,6 +175,7 @@ fn run_fig2(_: Resolution) -> Result<SceneOutput, SceneError> {
         }
     }
     Ok(SceneOutput {
+        extra_tables: Vec::new(),
         key_numbers: k,
         table: render::fig2::table(&d),
         svg: render::fig2::plot(&d)?,
@@ -197,6 +201,7 @@ fn run_fig3abc(_: Resolution) -> Result<SceneOutput, SceneError> {
         }
     }
     Ok(SceneOutput {
+        extra_tables: Vec::new(),
         key_numbers: k,
         table: render::fig3abc::table(&d),
         svg: render::fig3abc::plot(&d)?,
@@ -223,6 +228,7 @@ fn run_fig3d(_: Resolution) -> Result<SceneOutput, SceneError> {
         k.float(format!("{key} max_distance_from_phi1"), p.max_distance, 3);
     }
     Ok(SceneOutput {
+        extra_tables: Vec::new(),
         key_numbers: k,
         table: render::fig3d::table(&d),
         svg: render::fig3d::plot(&d)?,
@@ -279,6 +285,7 @@ fn run_fig4(resolution: Resolution) -> Result<SceneOutput, SceneError> {
         );
     }
     Ok(SceneOutput {
+        extra_tables: Vec::new(),
         key_numbers: k,
         table: render::fig4::table(&d),
         svg: render::fig4::plot(&d)?,
@@ -349,6 +356,7 @@ fn run_fig5(resolution: Resolution) -> Result<SceneOutput, SceneError> {
         c.paper_figure4_set_reachable_at.len() as i64,
     );
     Ok(SceneOutput {
+        extra_tables: Vec::new(),
         key_numbers: k,
         table: render::fig5::table(&d),
         svg: render::fig5::plot(&d)?,
@@ -373,7 +381,28 @@ fn run_work_precision(resolution: Resolution) -> Result<SceneOutput, SceneError>
         k.integer(format!("{key} events"), p.events as i64);
         k.text(format!("{key} same_sequence"), p.same_sequence.to_string());
     }
+    // Work counters of the speed-target runs, per period; 2 figures, so a last-ulp
+    // difference of libm between machines (which can move one step) does not show.
+    for c in &d.costs {
+        let per_period = |x: u64| x as f64 / c.periods as f64;
+        k.float(
+            format!("{} evaluations per period", c.label),
+            per_period(c.stats.evaluations),
+            2,
+        );
+        k.float(
+            format!("{} certified steps per period", c.label),
+            per_period(c.stats.steps),
+            2,
+        );
+        k.float(
+            format!("{} segments per period", c.label),
+            per_period(c.stats.segments),
+            2,
+        );
+    }
     Ok(SceneOutput {
+        extra_tables: vec![("costs", render::work_precision::costs_table(&d))],
         key_numbers: k,
         table: render::work_precision::table(&d),
         svg: render::work_precision::plot(&d)?,
@@ -381,25 +410,29 @@ fn run_work_precision(resolution: Resolution) -> Result<SceneOutput, SceneError>
     })
 }
 
-/// Writes `plot.svg`, `table.md`, `data.json` and `key_numbers.json` into `dir`.
+/// Writes `plot.svg`, `table.md` (and any further tables), `data.json` and
+/// `key_numbers.json` into `dir`.
 pub fn write(out: &SceneOutput, dir: &Path) -> Result<(), SceneError> {
     let io = |path: &Path| {
         let path = path.display().to_string();
         move |source| SceneError::Io { path, source }
     };
     std::fs::create_dir_all(dir).map_err(io(dir))?;
-    let files = [
-        ("plot.svg", out.svg.clone()),
-        ("table.md", out.table.clone()),
+    let mut files = vec![
+        ("plot.svg".to_string(), out.svg.clone()),
+        ("table.md".to_string(), out.table.clone()),
         (
-            "data.json",
+            "data.json".to_string(),
             serde_json::to_string_pretty(&out.data).expect("json"),
         ),
         (
-            "key_numbers.json",
+            "key_numbers.json".to_string(),
             serde_json::to_string_pretty(&out.key_numbers.to_json()).expect("json"),
         ),
     ];
+    for (name, table) in &out.extra_tables {
+        files.push((format!("{name}.md"), table.clone()));
+    }
     for (name, text) in files {
         let p = dir.join(name);
         std::fs::write(&p, text).map_err(io(&p))?;

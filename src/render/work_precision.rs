@@ -113,3 +113,42 @@ pub fn table(d: &WorkPrecisionData) -> String {
         &rows,
     )
 }
+
+/// The exact simulator's work counters on the speed-target runs.
+pub fn costs_table(d: &WorkPrecisionData) -> String {
+    let rows: Vec<Vec<String>> = d
+        .costs
+        .iter()
+        .map(|c| {
+            let s = &c.stats;
+            let per_period = |x: u64| format!("{:.1}", x as f64 / c.periods as f64);
+            vec![
+                format!(
+                    "{}, N = {}, k = {}k₁",
+                    c.label, c.modes, c.stop_stiffness_over_k1
+                ),
+                c.events.to_string(),
+                per_period(s.segments),
+                format!("{} ({})", per_period(s.steps), per_period(s.contact_steps)),
+                per_period(s.evaluations),
+                format!(
+                    "{:.1}",
+                    s.polish_evaluations as f64 / c.events.max(1) as f64
+                ),
+                format!("{:.1}", c.seconds * 1e3),
+            ]
+        })
+        .collect();
+    markdown_table(
+        &[
+            "model",
+            "switches",
+            "segments per period",
+            "steps per period (contact)",
+            "g evaluations per period",
+            "polish per switch",
+            "ms",
+        ],
+        &rows,
+    )
+}

@@ -9,10 +9,14 @@
 //! also reports how far the DP5 integrator at its tightest rtol lies from it, so the
 //! reference is itself cross-checked. Wall times are the best of `repeats` runs and are
 //! the only machine-dependent numbers of the book.
+//!
+//! It also counts where the exact simulator's time goes ([`Stats`]) on the two runs of the
+//! simulator issue's speed targets: 1000 periods from rest of the Figure 4 model (N = 10)
+//! and of the Figure 6(b) model (N = 20, k = 1000k₁).
 
 use crate::galerkin::{self, Forcing, GalerkinModel, GalerkinParams};
 use crate::reference::{self, Tolerances};
-use crate::simulator::{Observe, Settings, Simulator};
+use crate::simulator::{Observe, Settings, Simulator, Stats};
 use nalgebra::DVector;
 use serde::Serialize;
 use std::time::Instant;
@@ -30,6 +34,8 @@ pub struct WorkPrecisionParams {
     pub rtols: Vec<f64>,
     /// Timing repeats (best of).
     pub repeats: usize,
+    /// Forcing periods of the two cost runs.
+    pub cost_periods: u64,
 }
 
 impl WorkPrecisionParams {
@@ -43,6 +49,7 @@ impl WorkPrecisionParams {
                 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13,
             ],
             repeats: 3,
+            cost_periods: 1000,
         }
     }
 
@@ -54,6 +61,7 @@ impl WorkPrecisionParams {
             root_tolerances: vec![1e-2, 1e-6, 1e-15],
             rtols: vec![1e-6, 1e-9, 1e-13],
             repeats: 1,
+            cost_periods: 1000,
         }
     }
 }
@@ -88,16 +96,42 @@ pub struct WorkPrecisionData {
     pub reference_events: usize,
     /// All runs.
     pub points: Vec<WorkPoint>,
+    /// The exact simulator's work on the speed-target runs.
+    pub costs: Vec<CostRun>,
+}
+
+/// The exact simulator's work counters on one run from rest.
+#[derive(Debug, Clone, Serialize)]
+pub struct CostRun {
+    /// Which model.
+    pub label: String,
+    /// N.
+    pub modes: usize,
+    /// k/k₁.
+    pub stop_stiffness_over_k1: f64,
+    /// Forcing periods.
+    pub periods: u64,
+    /// Switching events.
+    pub events: usize,
+    /// The counters.
+    pub stats: Stats,
+    /// Best wall time over the repeats (s).
+    pub seconds: f64,
 }
 
 /// The Figure 4 model with N modes.
 pub fn figure4_model(modes: usize) -> GalerkinModel {
+    paper_model(modes, 100.0)
+}
+
+/// N modes, k = `k_over_k1`·k₁, ζ₁ = 0.01, d₀ = 0, ω = 2(β₁⁻)² (Figures 4 and 6(b)).
+fn paper_model(modes: usize, k_over_k1: f64) -> GalerkinModel {
     GalerkinModel::new(
-        GalerkinParams::new(modes, 100.0 * galerkin::first_modal_stiffness())
+        GalerkinParams::new(modes, k_over_k1 * galerkin::first_modal_stiffness())
             .with_zeta1(0.01)
             .with_forcing(Forcing::paper(2.0 * galerkin::first_frequency())),
     )
-    .expect("valid Figure 4 parameters")
+    .expect("valid Figure 4 and 6(b) parameters")
 }
 
 fn best_of<T>(repeats: usize, mut f: impl FnMut() -> T) -> (T, f64) {
@@ -178,9 +212,25 @@ pub fn compute(p: &WorkPrecisionParams) -> Result<WorkPrecisionData, crate::flow
             evaluations: r.evaluations,
         });
     }
+    let mut costs = Vec::new();
+    for (label, modes, k_over_k1) in [("Figure 4", 10, 100.0), ("Figure 6(b)", 20, 1000.0)] {
+        let sim = Simulator::new(paper_model(modes, k_over_k1))?;
+        let x0 = DVector::zeros(2 * modes);
+        let ((_, trace), seconds) = best_of(p.repeats, || sim.run(&x0, p.cost_periods, observe));
+        costs.push(CostRun {
+            label: label.into(),
+            modes,
+            stop_stiffness_over_k1: k_over_k1,
+            periods: p.cost_periods,
+            events: trace.events.len(),
+            stats: trace.stats,
+            seconds,
+        });
+    }
     Ok(WorkPrecisionData {
         params: p.clone(),
         reference_events: ev_ref.len(),
         points,
+        costs,
     })
 }
