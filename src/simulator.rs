@@ -27,7 +27,7 @@
 use crate::flow::{decay, FlowError, RegionFlow};
 use crate::galerkin::{GalerkinModel, Region};
 use crate::numerics::polar;
-use nalgebra::DVector;
+use nalgebra::{DMatrix, DVector};
 use num_complex::Complex64;
 
 /// Shortest certified step, as a fraction of the forcing period.
@@ -182,6 +182,61 @@ pub struct Simulator {
     pub contact: RegionFlow,
     /// Settings.
     pub settings: Settings,
+    /// Tables for the exact energy integrals of the − and + regions.
+    energy_tables: [EnergyTables; 2],
+}
+
+/// One region's tables for the exact energy integrals. Inside a segment the velocity is
+/// η̇(s) = Σ_m c_m p_m e^{μ_m s} over the homogeneous exponentials (a pair as λ_k and its
+/// conjugate) and, with forcing, the two forced ones ±iω; only the c_m depend on the
+/// segment, so everything quadratic in p_m is computed once per region.
+#[derive(Debug, Clone)]
+struct EnergyTables {
+    /// μ_m.
+    exponents: Vec<Complex64>,
+    /// G_mn = p_mᵀCp_n.
+    gram: DMatrix<Complex64>,
+    /// fᵀp_m.
+    forcing: Vec<Complex64>,
+}
+
+impl EnergyTables {
+    fn new(flow: &RegionFlow, model: &GalerkinModel) -> Self {
+        let n = flow.modes;
+        let velocity =
+            |col: &dyn Fn(usize) -> Complex64| -> Vec<Complex64> { (0..n).map(col).collect() };
+        let mut p: Vec<Vec<Complex64>> = Vec::new();
+        let mut exponents = Vec::new();
+        for t in &flow.terms {
+            let v = velocity(&|i| flow.v[(n + i, t.index)]);
+            if t.pair {
+                p.push(v.iter().map(|z| z.conj()).collect());
+                exponents.push(t.lambda.conj());
+            }
+            p.push(v);
+            exponents.push(t.lambda);
+        }
+        if flow.omega > 0.0 {
+            let x = velocity(&|i| flow.forced[n + i]);
+            p.push(x.iter().map(|z| z.conj()).collect());
+            exponents.push(Complex64::new(0.0, -flow.omega));
+            p.push(x);
+            exponents.push(Complex64::new(0.0, flow.omega));
+        }
+        let c = &model.damping;
+        let gram = DMatrix::from_fn(p.len(), p.len(), |a, b| {
+            (0..n).map(|i| p[a][i] * p[b][i] * c[i]).sum()
+        });
+        let forcing = p
+            .iter()
+            .map(|pm| (0..n).map(|i| pm[i] * model.forcing_amplitude[i]).sum())
+            .collect();
+        Self {
+            exponents,
+            gram,
+            forcing,
+        }
+    }
 }
 
 /// A complex-pair term Re(a e^{λs}) of a segment's tip signal.
@@ -556,11 +611,18 @@ fn cubic_max(g: f64, gd: f64, gdd: f64, j: f64, big_h: f64) -> f64 {
 impl Simulator {
     /// Builds both region flows.
     pub fn new(model: GalerkinModel) -> Result<Self, FlowError> {
+        let free = RegionFlow::new(&model, Region::Free)?;
+        let contact = RegionFlow::new(&model, Region::Contact)?;
+        let energy_tables = [
+            EnergyTables::new(&free, &model),
+            EnergyTables::new(&contact, &model),
+        ];
         Ok(Self {
-            free: RegionFlow::new(&model, Region::Free)?,
-            contact: RegionFlow::new(&model, Region::Contact)?,
+            free,
+            contact,
             model,
             settings: Settings::default(),
+            energy_tables,
         })
     }
 
@@ -684,7 +746,8 @@ impl Simulator {
                 );
             }
             if let Some(b) = budget.as_mut() {
-                let (w, d) = segment_energy(&seg, &self.model, s_end);
+                let tables = &self.energy_tables[usize::from(region == Region::Contact)];
+                let (w, d) = segment_energy(&seg, tables, s_end);
                 b.work += w;
                 b.dissipated += d;
             }
@@ -762,8 +825,8 @@ impl Simulator {
     }
 }
 
-/// ∫₀^S e^{μs} ds, accurate also when |μS| is small.
-fn exp_integral(mu: Complex64, s: f64) -> Complex64 {
+/// ∫₀^S e^{μs} ds given e^{μS}, accurate also when |μS| is small.
+fn exp_integral(mu: Complex64, s: f64, growth: Complex64) -> Complex64 {
     let z = mu * s;
     if z.norm() < 0.1 {
         // S·(1 + z/2 + z²/6 + …), 12 terms: error < 0.1¹²/12! ≈ 2e-21
@@ -775,53 +838,63 @@ fn exp_integral(mu: Complex64, s: f64) -> Complex64 {
         }
         sum
     } else {
-        (z.exp() - 1.0) / mu
+        // |e^z − 1| ≥ 1 − e^{−0.1} here: no catastrophic cancellation
+        (growth - 1.0) / mu
     }
 }
 
-/// Exact forcing work and dissipation over [0, S] of a segment: η̇(s) is a finite sum of
-/// complex exponentials u_m e^{μ_m s}, so ∫ η̇ᵀCη̇ and ∫ fᵀη̇ cos ωt are sums of
-/// ∫ e^{(μ_m + μ_n)s} ds in closed form.
-fn segment_energy(seg: &Segment, model: &GalerkinModel, s_end: f64) -> (f64, f64) {
+/// Exact forcing work and dissipation over [0, S] of a segment: with η̇(s) =
+/// Σ_m c_m p_m e^{μ_m s}, ∫ η̇ᵀCη̇ = Σ_mn c_m c_n G_mn ∫e^{(μ_m+μ_n)s} and
+/// ∫ fᵀη̇ cos ωt = Σ_m c_m fᵀp_m ∫ e^{μ_m s} cos(θ₀ + ωs), all in closed form; e^{(μ_m+μ_n)S}
+/// is the product of the two factors e^{μS}, so a segment costs O(N²) products and O(N)
+/// exponentials.
+fn segment_energy(seg: &Segment, tables: &EnergyTables, s_end: f64) -> (f64, f64) {
     let f = seg.flow;
-    let n = f.modes;
-    // velocity components u_m (length N) and exponents μ_m
-    let mut us: Vec<(Vec<Complex64>, Complex64)> = Vec::with_capacity(2 * n + 2);
+    let mut coefficients = Vec::with_capacity(tables.exponents.len());
     for t in &f.terms {
         let w = f.coefficient(&seg.y, t);
-        let u: Vec<Complex64> = (0..n).map(|i| f.v[(n + i, t.index)] * w).collect();
         if t.pair {
-            // the conjugate partner carries the conjugate term
-            us.push((u.iter().map(|z| z.conj()).collect(), t.lambda.conj()));
+            coefficients.push(w.conj());
         }
-        us.push((u, t.lambda));
+        coefficients.push(w);
     }
+    let forcing_phase = Complex64::from_polar(0.5, seg.phase0);
     if f.omega > 0.0 {
-        let e = Complex64::from_polar(0.5, seg.phase0);
-        let u: Vec<Complex64> = (0..n).map(|i| f.forced[n + i] * e).collect();
-        let uc: Vec<Complex64> = u.iter().map(|z| z.conj()).collect();
-        us.push((u, Complex64::new(0.0, f.omega)));
-        us.push((uc, Complex64::new(0.0, -f.omega)));
+        coefficients.push(forcing_phase.conj());
+        coefficients.push(forcing_phase);
     }
-    let c = &model.damping;
+    let growth: Vec<Complex64> = tables
+        .exponents
+        .iter()
+        .map(|mu| polar(decay(mu.re * s_end), mu.im * s_end))
+        .collect();
     let mut dissipated = Complex64::new(0.0, 0.0);
-    for (a, (ua, ma)) in us.iter().enumerate() {
-        for (ub, mb) in us.iter().skip(a) {
-            let dot: Complex64 = (0..n).map(|i| ua[i] * ub[i] * c[i]).sum();
-            let weight = if std::ptr::eq(ua, ub) { 1.0 } else { 2.0 };
-            dissipated += dot * exp_integral(ma + mb, s_end) * weight;
+    for (a, (&ca, &ma)) in coefficients.iter().zip(&tables.exponents).enumerate() {
+        let mut row = Complex64::new(0.0, 0.0);
+        for b in a..coefficients.len() {
+            let weight = if a == b { 1.0 } else { 2.0 };
+            let mu = ma + tables.exponents[b];
+            row += coefficients[b]
+                * tables.gram[(a, b)]
+                * exp_integral(mu, s_end, growth[a] * growth[b])
+                * weight;
         }
+        dissipated += ca * row;
     }
     let mut work = Complex64::new(0.0, 0.0);
     if f.omega > 0.0 {
         let iw = Complex64::new(0.0, f.omega);
-        let (ep, em) = (
-            Complex64::from_polar(0.5, seg.phase0),
-            Complex64::from_polar(0.5, -seg.phase0),
-        );
-        for (u, mu) in &us {
-            let fu: Complex64 = (0..n).map(|i| u[i] * model.forcing_amplitude[i]).sum();
-            work += fu * (ep * exp_integral(mu + iw, s_end) + em * exp_integral(mu - iw, s_end));
+        let forced_growth = polar(1.0, f.omega * s_end);
+        for ((&c, &mu), (&fp, &g)) in coefficients
+            .iter()
+            .zip(&tables.exponents)
+            .zip(tables.forcing.iter().zip(&growth))
+        {
+            work += c
+                * fp
+                * (forcing_phase * exp_integral(mu + iw, s_end, g * forced_growth)
+                    + forcing_phase.conj()
+                        * exp_integral(mu - iw, s_end, g * forced_growth.conj()));
         }
     }
     (work.re, dissipated.re)
