@@ -21,6 +21,10 @@
 //! deeper one is found. A touch with zero normal velocity is recorded as a grazing event
 //! and does not switch the region.
 //!
+//! **Maximum.** The largest tip displacement is certified the same way: the search for a
+//! zero of d − (B + δ), B the best value so far, either proves d ≤ B + δ on a segment or
+//! finds where d rises through it, from where an ascent raises B ([`TipMaximum`]).
+//!
 //! **Time.** t = cycles·T + offset with offset ∈ [0, T): the forcing phase ω·offset never
 //! loses precision over long runs.
 
@@ -93,6 +97,22 @@ pub struct Observe {
     pub dense_per_period: usize,
     /// The energy budget.
     pub energy: bool,
+    /// The largest tip displacement, certified (see [`TipMaximum`]).
+    pub max_tip: bool,
+}
+
+/// The largest tip displacement d = φ(1)ᵀη of a run, found by certified level crossings:
+/// no value of d on the run exceeds `value` by more than `tolerance`.
+#[derive(Debug, Clone, Copy, serde::Serialize)]
+pub struct TipMaximum {
+    /// Where it is attained.
+    pub clock: Clock,
+    /// t.
+    pub time: f64,
+    /// max d.
+    pub value: f64,
+    /// The certificate's slack: 64ε times the tip signal's magnitude scale.
+    pub tolerance: f64,
 }
 
 /// Energy accounting (kinetic + modal strain + stop energy; forcing work; dissipation).
@@ -139,6 +159,8 @@ pub struct Stats {
     pub contact_steps: u64,
     /// Evaluations spent polishing switching times.
     pub polish_evaluations: u64,
+    /// Evaluations spent on the certified maximum of the tip (not in `evaluations`).
+    pub maximum_evaluations: u64,
 }
 
 /// What a run produced.
@@ -152,6 +174,8 @@ pub struct Trace {
     pub dense: Vec<(f64, f64, f64, bool)>,
     /// The energy budget (if observed).
     pub energy: Option<EnergyBudget>,
+    /// The largest tip displacement (if observed).
+    pub max_tip: Option<TipMaximum>,
     /// Work counters.
     pub stats: Stats,
 }
@@ -290,6 +314,14 @@ fn negligible_from(a_abs: f64, lambda_re: f64, negligible: f64) -> f64 {
     }
 }
 
+/// The function a search looks for zeros of: g(s) = sign·(d(s) − level), d the tip
+/// displacement. The switching surface is sign = ±1 (free flight, contact) at level d₀.
+#[derive(Debug, Clone, Copy)]
+struct Target {
+    sign: f64,
+    level: f64,
+}
+
 /// g and its derivatives at a point, with bounds valid from that point on.
 #[derive(Debug, Clone, Copy)]
 struct Local {
@@ -357,14 +389,14 @@ impl<'a> Segment<'a> {
 
     /// Everything the search needs at s, in one pass over the spectrum. Re λ ≤ 0, so each
     /// term's magnitude only decreases after s and the bounds hold on [s, ∞).
-    fn local(&self, s: f64) -> Local {
+    fn local(&self, s: f64, target: Target) -> Local {
         let f = self.flow;
         let w = f.omega;
         let pf = f.tip_forced * polar(1.0, self.phase0 + w * s);
         let (mut d, mut v, mut acc) = (pf.re + f.tip_static, -w * pf.im, -w * w * pf.re);
         let amp = self.forced_amplitude;
         let (mut b2, mut b3) = (w * w * amp, w * w * w * amp);
-        let mut scale = amp + f.tip_static.abs() + self.gap.abs();
+        let mut scale = amp + f.tip_static.abs() + target.level.abs();
         // a decayed term's magnitude is ≤ negligible; twice that absorbs the rounding of
         // its `negligible_from`
         let tiny = 2.0 * self.negligible;
@@ -401,19 +433,38 @@ impl<'a> Segment<'a> {
             scale += mag;
         }
         Local {
-            g: self.sign * (d - self.gap),
-            gd: self.sign * v,
-            gdd: self.sign * acc,
+            g: target.sign * (d - target.level),
+            gd: target.sign * v,
+            gdd: target.sign * acc,
             bound2: b2,
             bound3: b3,
             scale,
         }
     }
 
+    /// The switching surface of this segment's region.
+    fn surface(&self) -> Target {
+        Target {
+            sign: self.sign,
+            level: self.gap,
+        }
+    }
+
+    /// Tip displacement, velocity and acceleration at s, with the bound on |d̈| from s on.
+    fn tip_local(&self, s: f64) -> Local {
+        self.local(
+            s,
+            Target {
+                sign: 1.0,
+                level: 0.0,
+            },
+        )
+    }
+
     /// Tip displacement and velocity at s.
     fn tip(&self, s: f64) -> (f64, f64) {
-        let l = self.local(s);
-        (self.sign * l.g + self.gap, self.sign * l.gd)
+        let l = self.tip_local(s);
+        (l.g, l.gd)
     }
 
     /// A bound on |ḋ| at s: the scale against which a touch counts as grazing.
@@ -464,24 +515,27 @@ impl<'a> Segment<'a> {
     /// acceleration, so values inside g's round-off band near the start are not crossings.
     /// A crossing is accepted once g has been certainly negative (below minus its
     /// round-off floor), or when g is certainly positive.
+    /// The search starts at `from` (0 for the switching surface).
     fn first_crossing(
         &self,
+        target: Target,
+        from: f64,
         s_max: f64,
         h_min: f64,
         rel_tol: f64,
         stats: &mut Stats,
     ) -> Option<f64> {
         let noise = |p: &Local| 8.0 * f64::EPSILON * p.scale;
-        let mut s = 0.0;
-        let mut p = self.local(0.0);
+        let mut s = from;
+        let mut p = self.local(from, target);
         stats.evaluations += 1;
         // The last point with g < 0 strictly, with its value; and whether g has been
         // certainly negative yet.
-        let mut last_negative = (p.g < 0.0).then_some((0.0, p.g));
+        let mut last_negative = (p.g < 0.0).then_some((from, p.g));
         let mut inside = p.g < -noise(&p);
         while s < s_max {
             stats.steps += 1;
-            if self.sign < 0.0 {
+            if target.sign < 0.0 {
                 stats.contact_steps += 1;
             }
             let h = self.certified_step(&p, s_max - s).max(h_min).min(s_max - s);
@@ -493,14 +547,14 @@ impl<'a> Segment<'a> {
             } else {
                 h
             };
-            let next = self.local(s + step);
+            let next = self.local(s + step, target);
             stats.evaluations += 1;
             if next.g >= 0.0 && (inside || next.g > noise(&next)) {
                 // A root in (s, s + step]: unique if the probe's monotonicity held; otherwise
                 // only reachable at the h_min floor or at a tangency within round-off.
-                let lo = last_negative.or_else(|| self.negative_point(s, step, stats));
+                let lo = last_negative.or_else(|| self.negative_point(target, s, step, stats));
                 return Some(match lo {
-                    Some(lo) => self.polish(lo, (s + step, next.g), rel_tol, stats),
+                    Some(lo) => self.polish(target, lo, (s + step, next.g), rel_tol, stats),
                     // no negative value at all: the state left the region at its start
                     None => s + step,
                 });
@@ -517,11 +571,17 @@ impl<'a> Segment<'a> {
 
     /// From a start on the surface (g = 0, ġ < 0), a point in (s, s + step) with g < 0:
     /// the quadratic bound makes g(s + h*/2) < 0 for the first certified step h*.
-    fn negative_point(&self, s: f64, step: f64, stats: &mut Stats) -> Option<(f64, f64)> {
+    fn negative_point(
+        &self,
+        target: Target,
+        s: f64,
+        step: f64,
+        stats: &mut Stats,
+    ) -> Option<(f64, f64)> {
         let mut h = step / 2.0;
         for _ in 0..60 {
             stats.evaluations += 1;
-            let g = self.local(s + h).g;
+            let g = self.local(s + h, target).g;
             if g < 0.0 {
                 return Some((s + h, g));
             }
@@ -535,6 +595,7 @@ impl<'a> Segment<'a> {
     /// stops at the requested relative tolerance or at g's round-off floor.
     fn polish(
         &self,
+        target: Target,
         (lo, g_lo): (f64, f64),
         (hi, g_hi): (f64, f64),
         rel_tol: f64,
@@ -548,7 +609,7 @@ impl<'a> Segment<'a> {
             0.5 * (lo + hi)
         };
         for _ in 0..200 {
-            let p = self.local(s);
+            let p = self.local(s, target);
             stats.evaluations += 1;
             stats.polish_evaluations += 1;
             if p.g.abs() <= 8.0 * f64::EPSILON * p.scale {
@@ -580,6 +641,97 @@ impl<'a> Segment<'a> {
             s = next;
         }
         s
+    }
+}
+
+impl Segment<'_> {
+    /// The largest tip displacement on [0, s_end] if it exceeds `floor` (a value already
+    /// attained elsewhere), as (s, d(s)); with the slack `tol` of the certificate.
+    ///
+    /// Certified by level crossings: with the best value B attained so far, the certified
+    /// search for a zero of d − (B + tol) either finds none (then d ≤ B + tol on the whole
+    /// segment) or finds where d rises through it; an ascent from there raises B to a
+    /// local maximum, and the search resumes from that crossing at the new level.
+    fn maximum(
+        &self,
+        s_end: f64,
+        floor: Option<f64>,
+        h_min: f64,
+        stats: &mut Stats,
+    ) -> (Option<(f64, f64)>, f64) {
+        let tol = 64.0 * f64::EPSILON * self.tip_local(0.0).scale;
+        let mut best: Option<(f64, f64)> = None;
+        let mut level = floor.unwrap_or(f64::NEG_INFINITY);
+        for s in [0.0, s_end] {
+            let d = self.tip(s).0;
+            stats.evaluations += 1;
+            if d > level {
+                best = Some((s, d));
+                level = d;
+            }
+        }
+        let mut from = 0.0;
+        // each round raises the level by at least `tol`, so this bound is never reached in
+        // practice; it only guards against an endless loop on a pathological signal
+        for _ in 0..10_000 {
+            let target = Target {
+                sign: 1.0,
+                level: level + tol,
+            };
+            // the crossing itself needs no precision: the ascent starts from it
+            match self.first_crossing(target, from, s_end, h_min, 1e-6, stats) {
+                None => break,
+                Some(crossing) => {
+                    let (s, d) = self.ascend(crossing, s_end, stats);
+                    if d > level {
+                        best = Some((s, d));
+                        level = d;
+                    } else {
+                        level += tol;
+                    }
+                    from = crossing;
+                }
+            }
+        }
+        (best, tol)
+    }
+
+    /// Uphill from s to a local maximum of d in [0, s_end]: Newton steps to the vertex of
+    /// the local parabola where d is concave, growing steps in the rising direction where
+    /// it is not, each accepted only if d increases (halved otherwise).
+    fn ascend(&self, s: f64, s_end: f64, stats: &mut Stats) -> (f64, f64) {
+        let mut p = self.tip_local(s);
+        let mut s = s;
+        stats.evaluations += 1;
+        let mut reach = (p.gd.abs() / p.bound2.max(f64::MIN_POSITIVE)).max(1e-12 * s_end);
+        for _ in 0..200 {
+            let mut step = if p.gdd < 0.0 {
+                -p.gd / p.gdd
+            } else {
+                reach.copysign(p.gd)
+            };
+            let mut improved = false;
+            for _ in 0..60 {
+                let candidate = (s + step).clamp(0.0, s_end);
+                if candidate == s {
+                    break;
+                }
+                let q = self.tip_local(candidate);
+                stats.evaluations += 1;
+                if q.g > p.g {
+                    reach = 2.0 * (candidate - s).abs();
+                    s = candidate;
+                    p = q;
+                    improved = true;
+                    break;
+                }
+                step /= 2.0;
+            }
+            if !improved {
+                break;
+            }
+        }
+        (s, p.g)
     }
 }
 
@@ -654,7 +806,14 @@ impl Simulator {
         );
         stats.segments += 1;
         let h_min = H_MIN_FRACTION * self.period();
-        let crossing = seg.first_crossing(horizon, h_min, self.settings.root_tolerance, stats);
+        let crossing = seg.first_crossing(
+            seg.surface(),
+            0.0,
+            horizon,
+            h_min,
+            self.settings.root_tolerance,
+            stats,
+        );
         let state = seg.state(crossing.unwrap_or(horizon));
         (crossing, state)
     }
@@ -729,6 +888,8 @@ impl Simulator {
             };
             let horizon = periods_ahead as f64 * period - clock.offset;
             let crossing = seg.first_crossing(
+                seg.surface(),
+                0.0,
                 horizon,
                 h_min,
                 self.settings.root_tolerance,
@@ -744,6 +905,28 @@ impl Simulator {
                     region,
                     &mut trace,
                 );
+            }
+            if observe.max_tip {
+                let mut work = Stats::default();
+                let floor = trace.max_tip.map(|m| m.value);
+                let (best, tolerance) = seg.maximum(s_end, floor, h_min, &mut work);
+                trace.stats.maximum_evaluations += work.evaluations;
+                // the certificate's slack is the largest over all segments
+                let tolerance = trace
+                    .max_tip
+                    .map_or(tolerance, |m| m.tolerance.max(tolerance));
+                if let Some((s, value)) = best {
+                    let mut at = clock;
+                    at.advance(s);
+                    trace.max_tip = Some(TipMaximum {
+                        clock: at,
+                        time: at.time(),
+                        value,
+                        tolerance,
+                    });
+                } else if let Some(m) = trace.max_tip.as_mut() {
+                    m.tolerance = tolerance;
+                }
             }
             if let Some(b) = budget.as_mut() {
                 let tables = &self.energy_tables[usize::from(region == Region::Contact)];

@@ -175,6 +175,14 @@ fn simulate_json_reports_the_orbit_and_its_checks() {
     // round-off level: the exact per-segment energy integrals close the balance
     assert!(v["energy_imbalance"].as_f64().unwrap() < 1e-12);
     assert!(!v["events"].as_array().unwrap().is_empty());
+    // the certified maximum lies in the recorded window, with a round-off slack
+    let (t, tol) = (
+        v["max_tip_time"].as_f64().unwrap(),
+        v["max_tip_tolerance"].as_f64().unwrap(),
+    );
+    let period = std::f64::consts::PI / impacting_cantilever::galerkin::first_frequency();
+    assert!(v["max_tip"].as_f64().unwrap() > 0.0 && tol < 1e-12);
+    assert!(t >= 300.0 * period && t <= 308.0 * period, "t = {t}");
 }
 
 #[test]

@@ -3,7 +3,7 @@
 
 use impacting_cantilever::galerkin::{self, Forcing, GalerkinModel, GalerkinParams};
 use impacting_cantilever::reference::{self, Tolerances};
-use impacting_cantilever::simulator::{Observe, Simulator};
+use impacting_cantilever::simulator::{Clock, Observe, Simulator};
 use nalgebra::DVector;
 use std::f64::consts::PI;
 
@@ -366,11 +366,93 @@ fn double_crossings_inside_one_fast_period_are_found() {
 }
 
 #[test]
+fn certified_maximum_of_the_linear_response_is_its_amplitude() {
+    // Started on the particular solution with the stop out of reach, d(t) = Re(P e^{iωt})
+    // + d_s exactly, so max d = |P| + d_s (here d_s = 0).
+    for n in [1, 3, 10] {
+        let sim = Simulator::new(out_of_reach(n, 0.01, 0.7)).unwrap();
+        let x0 = sim.free.particular(0.0);
+        let observe = Observe {
+            max_tip: true,
+            ..Default::default()
+        };
+        let (_, t) = sim.run(&x0, 3, observe);
+        let m = t.max_tip.unwrap();
+        let amplitude = sim.free.tip_forced.norm();
+        // the certificate's slack (64ε of the signal scale) plus round-off of d itself
+        assert!(
+            (m.value - amplitude).abs() <= m.tolerance + 1e-14 * amplitude,
+            "N={n}: {} vs {amplitude}",
+            m.value
+        );
+        // attained where the phase of P e^{iωt} is a multiple of 2π
+        let phase = sim.free.tip_forced.arg() + sim.free.omega * m.time;
+        let off = (phase / (2.0 * PI)).round() * 2.0 * PI - phase;
+        assert!(off.abs() < 1e-6, "N={n}: phase off by {off:e}");
+    }
+}
+
+#[test]
+fn certified_maximum_bounds_a_fine_sampling_on_impacting_orbits() {
+    // On settled Figure 4 orbits (contacts, a stiff stop mode, N up to 20 at 1000k₁) no
+    // sample of d at 20 000 points per period may exceed the certified maximum by more
+    // than its slack, and the samples' maximum must approach it within the sampling error
+    // max|d̈|·Δt²/8 (max|d̈| estimated from the samples' second differences, ×4 for safety).
+    for (n, k_over_k1) in [(1, 100.0), (3, 100.0), (10, 100.0), (20, 1000.0)] {
+        let model = GalerkinModel::new(
+            GalerkinParams::new(n, k_over_k1 * k1())
+                .with_zeta1(0.01)
+                .with_forcing(Forcing::paper(2.0 * w1())),
+        )
+        .unwrap();
+        let sim = Simulator::new(model).unwrap();
+        let (x, _) = sim.run(&DVector::zeros(2 * n), 100, Observe::default());
+        let start = Clock {
+            period: sim.period(),
+            cycles: 100,
+            offset: 0.0,
+        };
+        let certified = Observe {
+            max_tip: true,
+            ..Default::default()
+        };
+        let (_, t) = sim.run_from(&x, start, 4, certified);
+        let m = t.max_tip.unwrap();
+        let per_period = 20_000;
+        let sampled = Observe {
+            dense_per_period: per_period,
+            ..Default::default()
+        };
+        let (_, dense) = sim.run_from(&x, start, 4, sampled);
+        let d: Vec<f64> = dense.dense.iter().map(|p| p.1).collect();
+        let best = d.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+        let dt = sim.period() / per_period as f64;
+        let curvature = d
+            .windows(3)
+            .map(|w| (w[0] - 2.0 * w[1] + w[2]).abs() / (dt * dt))
+            .fold(0.0, f64::max);
+        let case = format!("N={n} k={k_over_k1}k1");
+        assert!(
+            best <= m.value + m.tolerance,
+            "{case}: sample {best} above {}",
+            m.value
+        );
+        assert!(
+            m.value - best <= 4.0 * curvature * dt * dt / 8.0,
+            "{case}: certified {} vs sampled {best}",
+            m.value
+        );
+        assert!(m.time >= start.time() && m.time <= start.time() + 4.0 * sim.period());
+    }
+}
+
+#[test]
 fn nothing_is_recorded_unless_asked() {
     let sim = Simulator::new(fig4(3)).unwrap();
     let (_, t) = sim.run(&DVector::zeros(6), 20, Observe::default());
     assert!(t.events.is_empty() && t.strobe.is_empty() && t.dense.is_empty());
-    assert!(t.energy.is_none());
+    assert!(t.energy.is_none() && t.max_tip.is_none());
+    assert_eq!(t.stats.maximum_evaluations, 0);
     let events_only = Observe {
         events: true,
         ..Default::default()

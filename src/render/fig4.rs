@@ -151,7 +151,7 @@ pub fn table(d: &Fig4Data) -> String {
             "residual",
             "impact velocities / (ωA_free)",
             "contact intervals (t/T)",
-            "max tip / A_free (sampled)",
+            "max tip / A_free",
             "dwell depth / A_free (sampled)",
         ],
         &rows,
