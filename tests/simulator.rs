@@ -1,10 +1,10 @@
 //! Code verification of the exact simulator and of the independent reference integrator:
 //! closed forms, certified contact detection, energy balance, cross-verification.
 
-use impacting_cantilever::galerkin::{self, Forcing, GalerkinModel, GalerkinParams};
+use impacting_cantilever::galerkin::{self, Forcing, GalerkinModel, GalerkinParams, Region};
 use impacting_cantilever::reference::{self, Tolerances};
 use impacting_cantilever::simulator::{Clock, Observe, Simulator};
-use nalgebra::DVector;
+use nalgebra::{DMatrix, DVector};
 use std::f64::consts::PI;
 
 fn k1() -> f64 {
@@ -443,6 +443,111 @@ fn certified_maximum_bounds_a_fine_sampling_on_impacting_orbits() {
             m.value
         );
         assert!(m.time >= start.time() && m.time <= start.time() + 4.0 * sim.period());
+    }
+}
+
+/// ż = Bz for z = [x; cos ωt; sin ωt; 1]: the region's system with its forcing generated
+/// by a rotation, so that e^{Bτ} (nalgebra's expm) propagates it exactly.
+fn augmented(m: &GalerkinModel, region: Region) -> DMatrix<f64> {
+    let n2 = 2 * m.modes();
+    let omega = m.params.forcing.as_ref().unwrap().omega;
+    let mut big = DMatrix::zeros(n2 + 3, n2 + 3);
+    big.view_mut((0, 0), (n2, n2))
+        .copy_from(&m.state_matrix(region));
+    let preload = m.stop_preload(region);
+    for j in 0..m.modes() {
+        big[(m.modes() + j, n2)] = m.forcing_amplitude[j];
+        big[(m.modes() + j, n2 + 2)] = preload[j];
+    }
+    big[(n2, n2 + 1)] = -omega;
+    big[(n2 + 1, n2)] = omega;
+    big
+}
+
+/// An independent reference for stiff cases, where the explicit DP5 reference is too slow:
+/// exact matrix exponentials of the augmented region systems on a fixed grid (no
+/// eigenvectors, no bounds), each sign change of the gap refined by bisection. It misses
+/// contacts shorter than `dt`, so a too-coarse grid shows as a different event sequence.
+fn expm_grid_events(m: &GalerkinModel, x0: &DVector<f64>, t_end: f64, dt: f64) -> Vec<(f64, bool)> {
+    let n = m.modes();
+    let systems = [augmented(m, Region::Free), augmented(m, Region::Contact)];
+    let steps = [(&systems[0] * dt).exp(), (&systems[1] * dt).exp()];
+    let index = |r: Region| usize::from(r == Region::Contact);
+    let gap = |z: &DVector<f64>| m.tip.dot(&z.rows(0, n)) - m.params.gap;
+    let left = |r: Region, z: &DVector<f64>| match r {
+        Region::Free => gap(z) >= 0.0,
+        Region::Contact => gap(z) < 0.0,
+    };
+    let mut z = DVector::zeros(2 * n + 3);
+    z.rows_mut(0, 2 * n).copy_from(x0);
+    z[2 * n] = 1.0;
+    z[2 * n + 2] = 1.0;
+    let mut region = m.starting_region(x0, 0.0);
+    let (mut t, mut events) = (0.0, Vec::new());
+    while t < t_end {
+        let h = dt.min(t_end - t);
+        let next = if h == dt {
+            &steps[index(region)] * &z
+        } else {
+            (&systems[index(region)] * h).exp() * &z
+        };
+        if !left(region, &next) {
+            z = next;
+            t += h;
+            continue;
+        }
+        let (mut lo, mut hi) = (0.0, h);
+        while hi - lo > 1e-16 * (t + hi) {
+            let mid = 0.5 * (lo + hi);
+            if left(region, &((&systems[index(region)] * mid).exp() * &z)) {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        z = (&systems[index(region)] * hi).exp() * &z;
+        t += hi;
+        events.push((t, region == Region::Free));
+        region = match region {
+            Region::Free => Region::Contact,
+            Region::Contact => Region::Free,
+        };
+    }
+    events
+}
+
+#[test]
+fn stiff_cases_agree_with_an_exponential_grid_reference() {
+    // N = 20 at 1e6 k₁ and at 1e8 k₁ (stop mode periods 5e-4 and 4e-5, events as close as
+    // 1e-5 apart), 5 periods from rest: the same event sequence (33 and 73 events), event
+    // times within 1e-8, the cross-verification tolerance. Measured 7e-11 and 4e-10:
+    // the grid's own round-off over 0.9e6 and 4.5e6 steps (it grows when dt is halved).
+    for (k_over_k1, periods, dt) in [(1e6, 5.0, 5e-6), (1e8, 5.0, 1e-6)] {
+        let model = GalerkinModel::new(
+            GalerkinParams::new(20, k_over_k1 * k1())
+                .with_zeta1(0.01)
+                .with_forcing(Forcing::paper(2.0 * w1())),
+        )
+        .unwrap();
+        let sim = Simulator::new(model.clone()).unwrap();
+        let x0 = DVector::zeros(40);
+        let observe = Observe {
+            events: true,
+            ..Default::default()
+        };
+        let (_, trace) = sim.run(&x0, periods as u64, observe);
+        let reference = expm_grid_events(&model, &x0, periods * sim.period(), dt);
+        let ours: Vec<(f64, bool)> = trace.events.iter().map(|e| (e.time, e.entering)).collect();
+        assert_eq!(ours.len(), reference.len(), "k={k_over_k1:e}k1");
+        let mut worst: f64 = 0.0;
+        for (a, b) in ours.iter().zip(&reference) {
+            assert_eq!(a.1, b.1, "k={k_over_k1:e}k1: directions");
+            worst = worst.max((a.0 - b.0).abs());
+        }
+        assert!(
+            worst < 1e-8,
+            "k={k_over_k1:e}k1: event times differ by {worst:e}"
+        );
     }
 }
 
