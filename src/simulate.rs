@@ -68,6 +68,9 @@ pub struct Report {
     pub max_tip: Option<TipMaximum>,
     /// Relative energy imbalance over the whole run.
     pub energy_imbalance: f64,
+    /// The larger eigenvector condition ‖V‖₁‖V⁻¹‖₁ of the two region flows: the flow is
+    /// accurate to about this times ε.
+    pub eigenvector_condition: f64,
     /// Wall time of the simulation.
     pub wall_seconds: f64,
 }
@@ -153,6 +156,7 @@ pub fn run(args: &Args) -> Result<Report, Error> {
         impacts_n,
         max_tip: window.max_tip,
         energy_imbalance: total.relative_imbalance(),
+        eigenvector_condition: sim.free.condition.max(sim.contact.condition),
         wall_seconds,
     })
 }
@@ -175,6 +179,7 @@ impl Report {
             "max_tip_time": self.max_tip.map(|m| m.time),
             "max_tip_tolerance": self.max_tip.map(|m| m.tolerance),
             "energy_imbalance": self.energy_imbalance,
+            "eigenvector_condition": self.eigenvector_condition,
             "wall_seconds": self.wall_seconds,
             "events": self.events.iter().map(|e| serde_json::json!({
                 "time": e.time,
@@ -223,6 +228,11 @@ impl Report {
         s.push_str(&format!(
             "energy imbalance: {:.2e}\n",
             self.energy_imbalance
+        ));
+        s.push_str(&format!(
+            "eigenvector condition: {:.1e} (flow accurate to ~{:.0e})\n",
+            self.eigenvector_condition,
+            self.eigenvector_condition * f64::EPSILON
         ));
         s.push_str(&format!("wall time: {:.4} s\n", self.wall_seconds));
         s

@@ -165,6 +165,7 @@ fn simulate_json_reports_the_orbit_and_its_checks() {
         "impacts_n",
         "max_tip",
         "energy_imbalance",
+        "eigenvector_condition",
         "wall_seconds",
     ] {
         assert!(v.get(key).is_some(), "missing {key}");
@@ -174,6 +175,9 @@ fn simulate_json_reports_the_orbit_and_its_checks() {
     assert_eq!(v["impacts_n"], 4);
     // round-off level: the exact per-segment energy integrals close the balance
     assert!(v["energy_imbalance"].as_f64().unwrap() < 1e-12);
+    // κ ≥ 1 always; the Figure 4 model's eigenvectors are well conditioned (measured ~1e3)
+    let kappa = v["eigenvector_condition"].as_f64().unwrap();
+    assert!((1.0..1e6).contains(&kappa), "κ = {kappa}");
     assert!(!v["events"].as_array().unwrap().is_empty());
     // the certified maximum lies in the recorded window, with a round-off slack
     let (t, tol) = (
