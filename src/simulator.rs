@@ -450,6 +450,11 @@ impl<'a> Segment<'a> {
         }
     }
 
+    /// The first switch into the other region in (0, s_max], certified.
+    fn next_switch(&self, s_max: f64, h_min: f64, rel_tol: f64, stats: &mut Stats) -> Option<f64> {
+        self.first_crossing(self.surface(), 0.0, s_max, h_min, rel_tol, stats)
+    }
+
     /// Tip displacement, velocity and acceleration at s, with the bound on |d̈| from s on.
     fn tip_local(&self, s: f64) -> Local {
         self.local(
@@ -806,14 +811,7 @@ impl Simulator {
         );
         stats.segments += 1;
         let h_min = H_MIN_FRACTION * self.period();
-        let crossing = seg.first_crossing(
-            seg.surface(),
-            0.0,
-            horizon,
-            h_min,
-            self.settings.root_tolerance,
-            stats,
-        );
+        let crossing = seg.next_switch(horizon, h_min, self.settings.root_tolerance, stats);
         let state = seg.state(crossing.unwrap_or(horizon));
         (crossing, state)
     }
@@ -887,9 +885,7 @@ impl Simulator {
                 (end_cycle - clock.cycles).min(MAX_SEGMENT_PERIODS)
             };
             let horizon = periods_ahead as f64 * period - clock.offset;
-            let crossing = seg.first_crossing(
-                seg.surface(),
-                0.0,
+            let crossing = seg.next_switch(
                 horizon,
                 h_min,
                 self.settings.root_tolerance,

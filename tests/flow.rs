@@ -3,9 +3,11 @@
 
 use impacting_cantilever::flow::RegionFlow;
 use impacting_cantilever::galerkin::{self, Forcing, GalerkinModel, GalerkinParams, Region};
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DVector;
 
-/// x(s) from expm of [[A, b̂, 0, ĉ], [0, 0, −ω, 0], [0, ω, 0, 0], [0, 0, 0, 0]] acting on
+mod common;
+
+/// x(s) from expm of the augmented system ([`common::augmented`]) acting on
 /// [x₀; cos θ₀; sin θ₀; 1]: an independent exact solution of ẋ = Ax + b̂ cos ωt + ĉ.
 fn expm_solution(
     m: &GalerkinModel,
@@ -15,23 +17,14 @@ fn expm_solution(
     s: f64,
 ) -> DVector<f64> {
     let n2 = 2 * m.modes();
-    let a = m.state_matrix(region);
-    let omega = m.params.forcing.as_ref().unwrap().omega;
-    let mut big = DMatrix::zeros(n2 + 3, n2 + 3);
-    big.view_mut((0, 0), (n2, n2)).copy_from(&a);
-    let preload = m.stop_preload(region);
-    for j in 0..m.modes() {
-        big[(m.modes() + j, n2)] = m.forcing_amplitude[j];
-        big[(m.modes() + j, n2 + 2)] = preload[j];
-    }
-    big[(n2, n2 + 1)] = -omega;
-    big[(n2 + 1, n2)] = omega;
     let mut z0 = DVector::zeros(n2 + 3);
     z0.rows_mut(0, n2).copy_from(x0);
     z0[n2] = phase.cos();
     z0[n2 + 1] = phase.sin();
     z0[n2 + 2] = 1.0;
-    ((big * s).exp() * z0).rows(0, n2).into_owned()
+    ((common::augmented(m, region) * s).exp() * z0)
+        .rows(0, n2)
+        .into_owned()
 }
 
 fn check(n: usize, k_over_k1: f64, zeta1: f64, gap: f64, s: f64) -> f64 {

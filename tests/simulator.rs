@@ -4,8 +4,11 @@
 use impacting_cantilever::galerkin::{self, Forcing, GalerkinModel, GalerkinParams, Region};
 use impacting_cantilever::reference::{self, Tolerances};
 use impacting_cantilever::simulator::{Clock, Observe, Simulator};
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DVector;
 use std::f64::consts::PI;
+
+mod common;
+use common::augmented;
 
 fn k1() -> f64 {
     galerkin::first_modal_stiffness()
@@ -444,24 +447,6 @@ fn certified_maximum_bounds_a_fine_sampling_on_impacting_orbits() {
         );
         assert!(m.time >= start.time() && m.time <= start.time() + 4.0 * sim.period());
     }
-}
-
-/// ż = Bz for z = [x; cos ωt; sin ωt; 1]: the region's system with its forcing generated
-/// by a rotation, so that e^{Bτ} (nalgebra's expm) propagates it exactly.
-fn augmented(m: &GalerkinModel, region: Region) -> DMatrix<f64> {
-    let n2 = 2 * m.modes();
-    let omega = m.params.forcing.as_ref().unwrap().omega;
-    let mut big = DMatrix::zeros(n2 + 3, n2 + 3);
-    big.view_mut((0, 0), (n2, n2))
-        .copy_from(&m.state_matrix(region));
-    let preload = m.stop_preload(region);
-    for j in 0..m.modes() {
-        big[(m.modes() + j, n2)] = m.forcing_amplitude[j];
-        big[(m.modes() + j, n2 + 2)] = preload[j];
-    }
-    big[(n2, n2 + 1)] = -omega;
-    big[(n2 + 1, n2)] = omega;
-    big
 }
 
 /// An independent reference for stiff cases, where the explicit DP5 reference is too slow:
