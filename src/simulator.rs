@@ -102,7 +102,9 @@ pub struct Observe {
 }
 
 /// The largest tip displacement d = φ(1)ᵀη of a run, found by certified level crossings:
-/// no value of d on the run exceeds `value` by more than `tolerance`.
+/// no value of d on the run exceeds `value` by more than `tolerance`, down to the search's
+/// resolution (a peak narrower than the shortest step, 1e-13 T, rising less than
+/// ≈ M·h_min²/2 above that level could pass unseen; see the module doc).
 #[derive(Debug, Clone, Copy, serde::Serialize)]
 pub struct TipMaximum {
     /// Where it is attained.
