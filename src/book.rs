@@ -1,14 +1,14 @@
-//! `cantilever book`: regenerate every scene into `book/src/generated/NAME/` and build the
-//! HTML book with mdBook, in-process (feature `book`).
+//! `cantilever book`: regenerate every scene into `book/src/generated/NAME/`, write the
+//! verdict summary of the landing page (`generated/summary.md`), and build the HTML book
+//! with mdBook, in-process (feature `book`).
 //!
 //! Math is written in the chapters as `$…$` and `$$…$$` and converted here to MathML
 //! (pulldown-latex), which browsers render natively; the vendored stylesheet and Latin
 //! Modern Math font in `book/assets/math/` make it look right offline. No page loads
 //! anything from a CDN.
 
-use crate::catalog::{self, Resolution};
+use crate::scene::{self, Entry, Progress, Resolution, SceneOutput};
 use anyhow::{bail, Context, Result};
-use indicatif::{ProgressBar, ProgressStyle};
 use mdbook_driver::MDBook;
 use mdbook_preprocessor::book::{Book, BookItem};
 use mdbook_preprocessor::{Preprocessor, PreprocessorContext};
@@ -18,10 +18,10 @@ use rayon::prelude::*;
 use std::path::Path;
 use std::time::Instant;
 
-/// Regenerates every scene (in parallel, with progress) at `resolution` and builds the
-/// book at `root`. The book uses [`Resolution::Book`]; the test suite builds it at
-/// [`Resolution::Test`] to check the pipeline without the full sweeps.
-pub fn build(root: &Path, resolution: Resolution) -> Result<()> {
+/// Regenerates every scene (in parallel) at `resolution` and builds the book at `root`.
+/// The book uses [`Resolution::Book`]; the test suite builds it at [`Resolution::Test`]
+/// to check the pipeline without the full sweeps.
+pub fn build(root: &Path, resolution: Resolution, progress: &dyn Progress) -> Result<()> {
     if !root.join("book.toml").exists() {
         bail!(
             "no book.toml in '{}': run from the repository root or pass --book-dir",
@@ -30,28 +30,31 @@ pub fn build(root: &Path, resolution: Resolution) -> Result<()> {
     }
     let started = Instant::now();
     let generated = root.join("src").join("generated");
-    let scenes = catalog::all();
-    let bar = ProgressBar::new(scenes.len() as u64).with_style(
-        ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {pos}/{len} scenes {msg}")
-            .expect("template")
-            .progress_chars("=> "),
-    );
-    let timings: Vec<Result<(String, f64)>> = scenes
+    let scenes = crate::scenes::all();
+    let task = progress.task("scenes", scenes.len() as u64);
+    let runs: Vec<Result<(SceneOutput, f64)>> = scenes
         .par_iter()
         .map(|spec| {
             let t = Instant::now();
-            let out = (spec.run)(resolution).with_context(|| format!("scene {}", spec.name))?;
-            catalog::write(&out, &generated.join(spec.name))?;
-            bar.inc(1);
-            bar.set_message(spec.name);
-            Ok((spec.name.to_string(), t.elapsed().as_secs_f64()))
+            let out = spec
+                .run(resolution, progress)
+                .with_context(|| format!("scene {}", spec.name()))?;
+            scene::write(&out, &generated.join(spec.name()))?;
+            task.advance(1);
+            Ok((out, t.elapsed().as_secs_f64()))
         })
         .collect();
-    bar.finish_and_clear();
-    for t in timings {
-        let (name, secs) = t?;
-        eprintln!("scene {name:<10} {secs:>8.2} s");
+    drop(task);
+    let mut outputs = Vec::new();
+    for (spec, run) in scenes.iter().zip(runs) {
+        let (out, secs) = run?;
+        eprintln!("scene {:<15} {secs:>8.2} s", spec.name());
+        outputs.push(out);
     }
+    scene::write_atomically(
+        &generated.join("summary.md"),
+        &summary_table(scenes, &outputs),
+    )?;
     let t = Instant::now();
     let mut book = MDBook::load(root).context("loading the book")?;
     book.with_preprocessor(MathPreprocessor);
@@ -68,6 +71,25 @@ pub fn build(root: &Path, resolution: Resolution) -> Result<()> {
         root.join("build").join("index.html").display()
     );
     Ok(())
+}
+
+/// The landing page's table: each result, the paper's claim, the verdict and its evidence,
+/// with a link to the chapter.
+pub fn summary_table(scenes: &[&dyn Entry], outputs: &[SceneOutput]) -> String {
+    let mut s =
+        String::from("| result | the paper's claim | verdict | evidence |\n|---|---|---|---|\n");
+    for (spec, out) in scenes.iter().zip(outputs) {
+        let link = spec.chapter().trim_end_matches(".md");
+        s.push_str(&format!(
+            "| [{}]({link}.md) ({}) | {} | **{}** | {} |\n",
+            spec.name(),
+            spec.paper(),
+            spec.claim(),
+            out.verdict.outcome,
+            out.verdict.evidence
+        ));
+    }
+    s
 }
 
 fn copy_dir(from: &Path, to: &Path) -> Result<()> {

@@ -1,10 +1,36 @@
 //! Typed errors for bad input. Every message is one line that names the parameter, what
 //! was given and what is allowed, so the CLI can print it verbatim.
 
-use thiserror::Error;
+/// Every failure of the library: bad input, a flow that cannot be built, a plot that cannot
+/// be drawn, a file that cannot be written, or a case a method does not support. New
+/// variants may be added.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// A parameter outside its allowed range.
+    #[error(transparent)]
+    Parameter(#[from] ParameterError),
+    /// A region flow could not be built.
+    #[error(transparent)]
+    Flow(#[from] crate::flow::FlowError),
+    /// Drawing failed.
+    #[error(transparent)]
+    Render(#[from] crate::render::RenderError),
+    /// Writing a file failed.
+    #[error("could not write {path}: {source}")]
+    Io {
+        /// The file.
+        path: String,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// Legal input that this method does not support, with the reason.
+    #[error("unsupported: {0}")]
+    Unsupported(String),
+}
 
 /// A parameter outside its allowed range.
-#[derive(Debug, Clone, PartialEq, Error)]
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error("invalid {name}: got {value}; allowed: {allowed}")]
 pub struct ParameterError {
     /// The parameter, in the paper's vocabulary (or a CLI flag).

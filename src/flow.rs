@@ -20,7 +20,7 @@
 //! the eigenbasis and back are real 2N×2N matrix–vector products.
 //!
 //! Only the forcing *phase* enters x_p, so callers pass the phase ωt mod 2π, kept exactly
-//! by counting whole periods (see [`crate::simulator`]).
+//! by counting whole periods (see [`crate::sim::clock`]).
 
 use crate::galerkin::{GalerkinModel, Region};
 use crate::numerics::polar;
@@ -70,17 +70,15 @@ pub struct ModalTerm {
 #[derive(Debug, Clone)]
 pub struct RegionFlow {
     /// Which region.
-    pub region: Region,
+    region: Region,
     /// N.
-    pub modes: usize,
+    modes: usize,
     /// Eigenvalues λ_k of A^± (2N, conjugate pairs adjacent or real).
-    pub lambda: Vec<Complex64>,
+    lambda: Vec<Complex64>,
     /// Right eigenvectors (columns), for the unbalanced A.
-    pub v: DMatrix<Complex64>,
-    /// V⁻¹.
-    pub v_inv: DMatrix<Complex64>,
+    v: DMatrix<Complex64>,
     /// The homogeneous solution's real terms, one per conjugate pair or real eigenvalue.
-    pub terms: Vec<ModalTerm>,
+    terms: Vec<ModalTerm>,
     /// Real 2N×2N map from x − x_p to the real modal coordinates y (the rows of V⁻¹ of
     /// the terms; real and imaginary parts for a pair): one real matrix-vector product.
     to_modal: DMatrix<f64>,
@@ -88,17 +86,17 @@ pub struct RegionFlow {
     /// V (2 Re v_k and −2 Im v_k for a pair, v_k for a real eigenvalue).
     from_modal: DMatrix<f64>,
     /// X with (iωI − A)X = b̂: the complex amplitude of the forced response.
-    pub forced: DVector<Complex64>,
+    forced: DVector<Complex64>,
     /// x_s: the static response to the stop preload.
-    pub static_state: DVector<f64>,
+    static_state: DVector<f64>,
     /// ω.
-    pub omega: f64,
+    omega: f64,
     /// φ(1)ᵀ X_η.
-    pub tip_forced: Complex64,
+    tip_forced: Complex64,
     /// φ(1)ᵀ η_s.
-    pub tip_static: f64,
+    tip_static: f64,
     /// ‖V‖₁‖V⁻¹‖₁.
-    pub condition: f64,
+    condition: f64,
 }
 
 impl RegionFlow {
@@ -116,7 +114,7 @@ impl RegionFlow {
         if let Some(l) = lambda.iter().find(|l| l.re > 1e-12 * scale) {
             return Err(FlowError::Unstable(l.re));
         }
-        let omega = model.params.forcing.as_ref().map_or(0.0, |f| f.omega);
+        let omega = model.params().forcing.as_ref().map_or(0.0, |f| f.omega);
         // (iωI − A) X = [0; f], solved directly (not through V, so it does not inherit
         // the eigenvectors' conditioning).
         let mut m = a.map(|x| Complex64::new(-x, 0.0));
@@ -125,7 +123,7 @@ impl RegionFlow {
         }
         let mut rhs = DVector::zeros(2 * n);
         for j in 0..n {
-            rhs[n + j] = Complex64::new(model.forcing_amplitude[j], 0.0);
+            rhs[n + j] = Complex64::new(model.forcing_amplitude()[j], 0.0);
         }
         let forced = m.lu().solve(&rhs).ok_or(FlowError::Eigen)?;
         let preload = model.stop_preload(region);
@@ -139,9 +137,9 @@ impl RegionFlow {
             static_state.rows_mut(0, n).copy_from(&eta);
         }
         let tip_of_mode =
-            |k: usize| -> Complex64 { (0..n).map(|i| v[(i, k)] * model.tip[i]).sum() };
-        let tip_forced = (0..n).map(|i| forced[i] * model.tip[i]).sum();
-        let tip_static = (0..n).map(|i| static_state[i] * model.tip[i]).sum();
+            |k: usize| -> Complex64 { (0..n).map(|i| v[(i, k)] * model.tip()[i]).sum() };
+        let tip_forced = (0..n).map(|i| forced[i] * model.tip()[i]).sum();
+        let tip_static = (0..n).map(|i| static_state[i] * model.tip()[i]).sum();
         let mut terms = Vec::new();
         let mut to_modal = DMatrix::zeros(2 * n, 2 * n);
         let mut from_modal = DMatrix::zeros(2 * n, 2 * n);
@@ -182,7 +180,6 @@ impl RegionFlow {
             modes: n,
             lambda,
             v,
-            v_inv,
             forced,
             static_state,
             omega,
@@ -190,6 +187,61 @@ impl RegionFlow {
             tip_static,
             condition,
         })
+    }
+
+    /// Which region.
+    pub fn region(&self) -> Region {
+        self.region
+    }
+
+    /// N.
+    pub fn modes(&self) -> usize {
+        self.modes
+    }
+
+    /// Eigenvalues λ_k of A^± (2N, conjugate pairs adjacent or real).
+    pub fn eigenvalues(&self) -> &[Complex64] {
+        &self.lambda
+    }
+
+    /// Right eigenvectors V (columns) of A^±.
+    pub fn eigenvectors(&self) -> &DMatrix<Complex64> {
+        &self.v
+    }
+
+    /// The homogeneous solution's real terms, one per conjugate pair or real eigenvalue.
+    pub fn terms(&self) -> &[ModalTerm] {
+        &self.terms
+    }
+
+    /// X with (iωI − A)X = b̂: the complex amplitude of the forced response.
+    pub fn forced(&self) -> &DVector<Complex64> {
+        &self.forced
+    }
+
+    /// x_s: the static response to the stop preload.
+    pub fn static_state(&self) -> &DVector<f64> {
+        &self.static_state
+    }
+
+    /// ω (0 without forcing).
+    pub fn omega(&self) -> f64 {
+        self.omega
+    }
+
+    /// φ(1)ᵀX_η: the complex amplitude of the forced tip response.
+    pub fn tip_forced(&self) -> Complex64 {
+        self.tip_forced
+    }
+
+    /// φ(1)ᵀη_s: the static tip displacement under the stop preload.
+    pub fn tip_static(&self) -> f64 {
+        self.tip_static
+    }
+
+    /// ‖V‖₁‖V⁻¹‖₁: the modal solution is accurate to about this times ε.
+    pub fn condition(&self) -> f64 {
+        self.condition
     }
 
     /// x_p at forcing phase θ = ωt: Re(X e^{iθ}) + x_s.

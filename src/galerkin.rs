@@ -159,18 +159,12 @@ pub fn first_modal_stiffness() -> f64 {
 /// The assembled N-mode model.
 #[derive(Debug, Clone)]
 pub struct GalerkinModel {
-    /// The validated parameters.
-    pub params: GalerkinParams,
-    /// β_j^-, j = 1..N.
-    pub beta: Vec<f64>,
-    /// k_j = (β_j^-)⁴.
-    pub modal_stiffness: DVector<f64>,
-    /// φ(1): every entry is 2.
-    pub tip: DVector<f64>,
-    /// Diagonal of \[C\]: 2α + γk_j.
-    pub damping: DVector<f64>,
-    /// Modal forcing amplitudes f_j = ∫φ_j f ds (zero without forcing).
-    pub forcing_amplitude: DVector<f64>,
+    params: GalerkinParams,
+    beta: Vec<f64>,
+    modal_stiffness: DVector<f64>,
+    tip: DVector<f64>,
+    damping: DVector<f64>,
+    forcing_amplitude: DVector<f64>,
 }
 
 impl GalerkinModel {
@@ -205,6 +199,76 @@ impl GalerkinModel {
     /// N.
     pub fn modes(&self) -> usize {
         self.beta.len()
+    }
+
+    /// The validated parameters.
+    pub fn params(&self) -> &GalerkinParams {
+        &self.params
+    }
+
+    /// β_j^-, j = 1..N.
+    pub fn beta(&self) -> &[f64] {
+        &self.beta
+    }
+
+    /// k_j = (β_j^-)⁴, the diagonal of K⁻.
+    pub fn modal_stiffness(&self) -> &DVector<f64> {
+        &self.modal_stiffness
+    }
+
+    /// φ(1): every entry is 2.
+    pub fn tip(&self) -> &DVector<f64> {
+        &self.tip
+    }
+
+    /// Diagonal of \[C\]: 2α + γk_j.
+    pub fn damping(&self) -> &DVector<f64> {
+        &self.damping
+    }
+
+    /// Modal forcing amplitudes f_j = ∫φ_j f ds (zero without forcing).
+    pub fn forcing_amplitude(&self) -> &DVector<f64> {
+        &self.forcing_amplitude
+    }
+
+    /// The forcing frequency ω (0 without forcing).
+    pub fn omega(&self) -> f64 {
+        self.params.forcing.as_ref().map_or(0.0, |f| f.omega)
+    }
+
+    /// A_free(ω) and ωA_free(ω): the steady-state tip amplitude and tip velocity amplitude of
+    /// the forced response with the stop removed, |Σ_j φ_j(1) f_j/(k_j − ω² + iC_jjω)|. The
+    /// paper's unit of displacement (1 at ω = (β₁⁻)² with the corrected eq (37)).
+    pub fn free_tip_amplitude(&self) -> (f64, f64) {
+        let omega = self.omega();
+        let amp: f64 = (0..self.modes())
+            .map(|j| {
+                let re = self.modal_stiffness[j] - omega * omega;
+                let im = self.damping[j] * omega;
+                self.tip[j] * self.forcing_amplitude[j] / (re * re + im * im).sqrt()
+            })
+            .sum::<f64>()
+            .abs();
+        (amp, amp * omega)
+    }
+
+    /// The modal state x = [η; η̇] of a beam with displacement w(s) and velocity w_t(s):
+    /// η_j = ∫₀¹ φ_j w ds, η̇_j = ∫₀¹ φ_j w_t ds (the L² projection onto the N modes; the
+    /// rest of the profile is not represented). Errors if a projection is not finite.
+    pub fn modal_state(
+        &self,
+        displacement: &dyn Fn(f64) -> f64,
+        velocity: &dyn Fn(f64) -> f64,
+    ) -> Result<DVector<f64>, ParameterError> {
+        let n = self.modes();
+        let eta = project_function(displacement, n)?;
+        let vel = project_function(velocity, n)?;
+        let mut x = DVector::zeros(2 * n);
+        for j in 0..n {
+            x[j] = error::finite("projected initial displacement", eta[j])?;
+            x[n + j] = error::finite("projected initial velocity", vel[j])?;
+        }
+        Ok(x)
     }
 
     /// \[K^±\]: diag(k_j), plus k·11ᵀ in contact (eq 9).

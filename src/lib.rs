@@ -14,22 +14,23 @@
 //! - [`numerics`], [`error`], [`report`]: shared building blocks.
 
 pub mod asymptotics;
-pub mod catalog;
 pub mod continuum;
+pub mod dopri5;
 pub mod error;
 pub mod flow;
 pub mod galerkin;
 pub mod golden;
 pub mod numerics;
 pub mod orbit;
-pub mod reference;
+pub mod problems;
 pub mod render;
 pub mod report;
 pub mod restitution;
 pub mod rigid;
+pub mod scene;
 pub mod scenes;
-pub mod simulate;
-pub mod simulator;
+pub mod sim;
+pub mod verification;
 
 #[cfg(feature = "book")]
 pub mod book;

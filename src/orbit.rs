@@ -11,7 +11,7 @@
 //! When no m ≤ 32 passes, the orbit is reported as not periodic with its best residual —
 //! quasi-periodic, chaotic, or not yet settled — rather than forced into a label.
 
-use crate::simulator::{Clock, Event, Observe, Simulator};
+use crate::sim::{Dense, Event, Events, Sample, Simulator, Strobe};
 use nalgebra::DVector;
 use serde::Serialize;
 
@@ -81,7 +81,7 @@ pub struct Orbit {
     /// Contact events in the recorded window.
     pub events: Vec<Event>,
     /// Dense samples in the window, if asked for.
-    pub dense: Vec<(f64, f64, f64, bool)>,
+    pub dense: Vec<Sample>,
     /// The window's first cycle.
     pub window_start: i64,
     /// The state at the end.
@@ -106,27 +106,28 @@ pub fn settle(
     window: u64,
     dense_per_period: usize,
 ) -> Orbit {
-    let (x, _) = sim.run(x0, transient, Observe::default());
-    let start = Clock {
-        period: sim.period(),
-        cycles: transient as i64,
-        offset: 0.0,
-    };
-    let observe = Observe {
-        events: true,
-        strobe: true,
-        dense_per_period,
-        ..Default::default()
-    };
-    let (state, trace) = sim.run_from(&x, start, window, observe);
-    let strobe: Vec<DVector<f64>> = trace.strobe.iter().map(|(_, x)| x.clone()).collect();
-    let (m, residual) = detect_period(&strobe, PERIODIC_TOLERANCE, MAX_PERIOD);
+    let x = sim.run(x0, transient, &mut ()).state;
+    let start = sim.clock_at_cycle(transient as i64);
+    let (mut events, mut strobe, mut dense) = (
+        Events::default(),
+        Strobe::default(),
+        Dense::new(dense_per_period),
+    );
+    let state = sim
+        .run_from(
+            &x,
+            start,
+            window,
+            &mut (&mut events, &mut strobe, &mut dense),
+        )
+        .state;
+    let (m, residual) = detect_period(&strobe.states(), PERIODIC_TOLERANCE, MAX_PERIOD);
     let end = start.cycles + window as i64;
     let mut orbit = Orbit {
         kind: OrbitKind::NotPeriodic,
         residual,
-        events: trace.events,
-        dense: trace.dense,
+        events: events.events,
+        dense: dense.samples,
         window_start: start.cycles,
         state,
     };
@@ -182,4 +183,25 @@ pub fn random_state(
         };
         scale * rng.symmetric() / modes as f64
     })
+}
+
+/// Orbits reached from `starts` random initial conditions ([`random_state`] at 4·A_free,
+/// seeded by `seed` and N), counted by kind.
+pub fn random_orbits(
+    sim: &Simulator,
+    starts: usize,
+    seed: u64,
+    transient: u64,
+    window: u64,
+) -> Vec<(OrbitKind, usize)> {
+    let n = sim.model().modes();
+    let (amp, _) = sim.model().free_tip_amplitude();
+    let mut counts: std::collections::BTreeMap<OrbitKind, usize> = Default::default();
+    for i in 0..starts {
+        let mut rng = SplitMix64::for_point(seed, n as u64, 0, i as u64);
+        let x0 = random_state(&mut rng, n, 4.0 * amp, sim.omega());
+        let o = settle(sim, &x0, transient, window, 0);
+        *counts.entry(o.kind).or_default() += 1;
+    }
+    counts.into_iter().collect()
 }

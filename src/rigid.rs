@@ -1,5 +1,5 @@
 //! The rigid-impact N-mode model (§3, eqs 10–11): exact free flight between impacts
-//! ([`crate::simulator::Simulator::free_flight`], certified contact detection), and at
+//! ([`crate::sim::Simulator::free_flight`], certified contact detection), and at
 //! φ(1)ᵀη = d₀ with approaching tip velocity the modal law η̇⁺ = −\[R\]η̇⁻ of any of the three
 //! restitution laws ([`crate::restitution`]).
 //!
@@ -15,7 +15,8 @@
 //!   not implement: the run **stops** at t_∞ with [`Outcome::Chatter`].
 //! - A hard cap of `max_impacts` impacts per run ends it with [`Outcome::ImpactLimit`].
 
-use crate::simulator::{Clock, Simulator, Stats};
+use crate::error::ParameterError;
+use crate::sim::{Clock, Simulator, Stats};
 use nalgebra::{DMatrix, DVector};
 use serde::Serialize;
 
@@ -106,24 +107,38 @@ pub struct RigidImpact {
 }
 
 impl RigidImpact {
-    /// Builds the model; `law` must be N × N.
-    pub fn new(sim: Simulator, law: DMatrix<f64>) -> Self {
-        assert_eq!(law.nrows(), sim.model.modes(), "[R] must be N × N");
-        Self {
+    /// Builds the model; `law` must be N × N with finite entries.
+    pub fn new(sim: Simulator, law: DMatrix<f64>) -> Result<Self, ParameterError> {
+        let n = sim.model().modes();
+        if law.nrows() != n || law.ncols() != n {
+            return Err(ParameterError::new(
+                "restitution law [R]",
+                format!("{} × {}", law.nrows(), law.ncols()),
+                &format!("an N × N matrix, N = {n}"),
+            ));
+        }
+        if law.iter().any(|r| !r.is_finite()) {
+            return Err(ParameterError::new(
+                "restitution law [R]",
+                "a non-finite entry",
+                "finite entries",
+            ));
+        }
+        Ok(Self {
             sim,
             law,
             settings: RigidSettings::default(),
-        }
+        })
     }
 
     fn tip_velocity(&self, x: &DVector<f64>) -> f64 {
-        let n = self.sim.model.modes();
-        self.sim.model.tip.dot(&x.rows(n, n))
+        let n = self.sim.model().modes();
+        self.sim.model().tip().dot(&x.rows(n, n))
     }
 
     /// Runs from x0 at t = 0 until t_end.
     pub fn run(&self, x0: &DVector<f64>, t_end: f64) -> RigidRun {
-        let n = self.sim.model.modes();
+        let n = self.sim.model().modes();
         let period = self.sim.period();
         let mut clock = Clock {
             period,
@@ -174,8 +189,8 @@ impl RigidImpact {
                 }
                 // N = 1: stick at the stop from t_∞
                 clock.advance((t_inf - t).max(0.0));
-                let gap = self.sim.model.params.gap;
-                x[0] = gap / self.sim.model.tip[0];
+                let gap = self.sim.model().params().gap;
+                x[0] = gap / self.sim.model().tip()[0];
                 x[1] = 0.0;
                 events.push(RigidEvent::StickStart { time: clock.time() });
                 match self.release_time(&clock) {
@@ -230,10 +245,10 @@ impl RigidImpact {
     /// (None: never). Writing f₁ cos θ = |f₁| cos(θ − φ₀), φ₀ ∈ {0, π}, the release is the
     /// first downward zero θ = φ₀ + arccos(k₁η/|f₁|) + 2πm after the current phase.
     fn release_time(&self, clock: &Clock) -> Option<f64> {
-        let m = &self.sim.model;
-        let f1 = m.forcing_amplitude[0];
-        let hold = m.modal_stiffness[0] * m.params.gap / m.tip[0];
-        let omega = self.sim.free.omega;
+        let m = &self.sim.model();
+        let f1 = m.forcing_amplitude()[0];
+        let hold = m.modal_stiffness()[0] * m.params().gap / m.tip()[0];
+        let omega = self.sim.omega();
         let theta0 = omega * clock.offset;
         let now = f1 * theta0.cos() - hold;
         if now < 0.0 {

@@ -20,13 +20,29 @@ fn copy_tree(from: &Path, to: &Path) {
     }
 }
 
+/// The chapters `SUMMARY.md` links, as file stems (`fig4` for `fig4.md`).
+fn chapters_of_summary(path: &Path) -> Vec<String> {
+    let text = std::fs::read_to_string(path).unwrap();
+    text.lines()
+        .filter_map(|l| {
+            let start = l.find("](")? + 2;
+            let end = l[start..].find(')')? + start;
+            Some(l[start..end].trim_end_matches(".md").to_string())
+        })
+        .collect()
+}
+
 #[test]
 fn book_builds_with_rendered_math_plots_and_tables() {
     let tmp = std::env::temp_dir().join(format!("cantilever-book-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&tmp);
     copy_tree(&Path::new(env!("CARGO_MANIFEST_DIR")).join("book"), &tmp);
-    impacting_cantilever::book::build(&tmp, impacting_cantilever::catalog::Resolution::Test)
-        .expect("book builds");
+    impacting_cantilever::book::build(
+        &tmp,
+        impacting_cantilever::scene::Resolution::Test,
+        &impacting_cantilever::scene::Silent,
+    )
+    .expect("book builds");
     let page = std::fs::read_to_string(tmp.join("build/fig2.html")).unwrap();
     assert!(page.contains("<math"), "math converted to MathML");
     assert!(!page.contains("&lt;mo"), "no MathML leaked as text");
@@ -40,23 +56,27 @@ fn book_builds_with_rendered_math_plots_and_tables() {
     assert!(tmp
         .join("build/assets/math/font/latinmodern-math.woff2")
         .exists());
-    let chapters = [
-        "introduction",
-        "model",
-        "verification",
-        "spectrum",
-        "fig2",
-        "restitution",
-        "fig3abc",
-        "fig3d",
-        "fig4",
-        "fig5",
-        "simulator",
-        "work-precision",
-        "errata",
-        "reproducing",
-    ];
-    for chapter in chapters {
+    let chapters = chapters_of_summary(&tmp.join("src/SUMMARY.md"));
+    assert!(chapters.len() >= 10, "SUMMARY.md lists the chapters");
+    // every scene has its chapter in the book
+    for spec in impacting_cantilever::scenes::all() {
+        let chapter = spec.chapter().trim_end_matches(".md");
+        assert!(
+            chapters.iter().any(|c| c == chapter),
+            "{}: no chapter {chapter}",
+            spec.name()
+        );
+    }
+    // the landing page carries the generated verdict summary, one row per scene
+    let landing = std::fs::read_to_string(tmp.join("build/introduction.html")).unwrap();
+    for spec in impacting_cantilever::scenes::all() {
+        assert!(
+            landing.contains(&format!(">{}</a>", spec.name())),
+            "{} in the summary",
+            spec.name()
+        );
+    }
+    for chapter in &chapters {
         let html = std::fs::read_to_string(tmp.join(format!("build/{chapter}.html"))).unwrap();
         assert!(!html.contains("&lt;mo"), "{chapter}: MathML leaked as text");
         assert!(

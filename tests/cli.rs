@@ -20,9 +20,9 @@ fn cantilever(args: &[&str]) -> (i32, String, String) {
 fn unknown_scene_is_rejected_with_the_list_of_scenes() {
     let (code, _, err) = cantilever(&["scene", "nope"]);
     assert_eq!(code, 2);
-    let names: Vec<&str> = impacting_cantilever::catalog::all()
+    let names: Vec<&str> = impacting_cantilever::scenes::all()
         .iter()
-        .map(|s| s.name)
+        .map(|s| s.name())
         .collect();
     assert_eq!(
         err,

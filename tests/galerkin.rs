@@ -24,7 +24,7 @@ fn secular_eigenvalues_match_a_dense_symmetric_solver() {
                 .to_vec();
             dense.sort_by(f64::total_cmp);
             let ours =
-                galerkin::contact_eigenvalues(model.modal_stiffness.as_slice(), ratio * k1());
+                galerkin::contact_eigenvalues(model.modal_stiffness().as_slice(), ratio * k1());
             // A backward-stable dense solver is accurate to ~n·ε·‖K⁺‖ in absolute terms.
             let bound = 8.0 * n as f64 * f64::EPSILON * kp.norm();
             for (a, b) in ours.iter().zip(&dense) {
@@ -40,9 +40,9 @@ fn highest_eigenvalue_tends_to_kn_with_uniform_eigenvector() {
     for n in [1, 3, 10] {
         let k = 1e8 * k1();
         let model = GalerkinModel::new(GalerkinParams::new(n, k)).unwrap();
-        let lambda = galerkin::contact_eigenvalues(model.modal_stiffness.as_slice(), k);
+        let lambda = galerkin::contact_eigenvalues(model.modal_stiffness().as_slice(), k);
         let top = lambda[n - 1];
-        let kn = model.modal_stiffness[n - 1];
+        let kn = model.modal_stiffness()[n - 1];
         assert!((top / (k * n as f64) - 1.0).abs() < 2.0 * kn / (k * n as f64));
         let v = DVector::from_element(n, 1.0 / (n as f64).sqrt());
         let residual = (model.stiffness(Region::Contact) * &v - top * &v).norm() / top;
@@ -76,7 +76,7 @@ fn state_matrix_has_the_block_form_of_eq_35() {
                 assert_eq!(a[(i, 4 + j)], if i == j { 1.0 } else { 0.0 });
                 assert_eq!(a[(4 + i, j)], -k[(i, j)]);
                 let c = if i == j {
-                    0.2 + m.params.material_damping * m.modal_stiffness[i]
+                    0.2 + m.params().material_damping * m.modal_stiffness()[i]
                 } else {
                     0.0
                 };
@@ -86,7 +86,7 @@ fn state_matrix_has_the_block_form_of_eq_35() {
     }
     // C₁₁ = 2α + 2ζ₁(β₁⁻)²
     let w1 = galerkin::first_frequency();
-    assert!((m.damping[0] - (0.2 + 0.02 * w1)).abs() < 1e-14 * m.damping[0]);
+    assert!((m.damping()[0] - (0.2 + 0.02 * w1)).abs() < 1e-14 * m.damping()[0]);
 }
 
 #[test]
@@ -109,16 +109,16 @@ fn corrected_eq37_forcing_gives_unit_tip_amplitude_at_resonance() {
         .with_forcing(Forcing::paper(w1));
     let m = GalerkinModel::new(p).unwrap();
     // projects purely onto mode 1 (quadrature error only) with f₁ = ζ₁k₁
-    assert!((m.forcing_amplitude[0] / (zeta1 * k1()) - 1.0).abs() < 1e-13);
+    assert!((m.forcing_amplitude()[0] / (zeta1 * k1()) - 1.0).abs() < 1e-13);
     for j in 1..10 {
-        assert!(m.forcing_amplitude[j].abs() < 1e-13 * m.forcing_amplitude[0]);
+        assert!(m.forcing_amplitude()[j].abs() < 1e-13 * m.forcing_amplitude()[0]);
     }
     // unconstrained steady-state tip amplitude Σ φ_j(1) |f_j / (k_j − ω² + i C_jj ω)|
     let amp: f64 = (0..10)
         .map(|j| {
-            let re = m.modal_stiffness[j] - w1 * w1;
-            let im = m.damping[j] * w1;
-            2.0 * m.forcing_amplitude[j] / (re * re + im * im).sqrt()
+            let re = m.modal_stiffness()[j] - w1 * w1;
+            let im = m.damping()[j] * w1;
+            2.0 * m.forcing_amplitude()[j] / (re * re + im * im).sqrt()
         })
         .sum();
     assert!((amp - 1.0).abs() < 1e-12, "tip amplitude {amp}");
@@ -136,7 +136,7 @@ fn printed_eq37_amplitude_gives_one_over_four_zeta_squared() {
                 profile: SpatialProfile::PaperEq37AsPrinted,
             });
         let m = GalerkinModel::new(p).unwrap();
-        let amp = 2.0 * m.forcing_amplitude[0] / (m.damping[0] * w1);
+        let amp = 2.0 * m.forcing_amplitude()[0] / (m.damping()[0] * w1);
         let expected = 1.0 / (4.0 * zeta1 * zeta1);
         assert!((amp / expected - 1.0).abs() < 1e-12, "{amp} vs {expected}");
     }
@@ -152,7 +152,7 @@ fn uniform_load_projection_reproduces_the_static_tip_deflection() {
     });
     let m = GalerkinModel::new(p).unwrap();
     let tip: f64 = (0..50)
-        .map(|j| 2.0 * m.forcing_amplitude[j] / m.modal_stiffness[j])
+        .map(|j| 2.0 * m.forcing_amplitude()[j] / m.modal_stiffness()[j])
         .sum();
     assert!((tip - 0.125).abs() < 1e-8, "tip {tip}");
     // and ∫ψ_j = −2σ_j/β_j (checked by mpmath quadrature for j = 1..3), so with
@@ -162,7 +162,7 @@ fn uniform_load_projection_reproduces_the_static_tip_deflection() {
         let sign = if j % 2 == 0 { -1.0 } else { 1.0 };
         let expected = sign * 2.0 * mode.sigma / mode.beta;
         assert!(
-            (m.forcing_amplitude[j - 1] - expected).abs() < 1e-13,
+            (m.forcing_amplitude()[j - 1] - expected).abs() < 1e-13,
             "j={j}"
         );
     }

@@ -87,7 +87,7 @@ fn eq28_with_the_eigenvectors_of_k_plus_tends_to_eq29() {
             let v = DMatrix::from_fn(n, n, |i, j| e.eigenvectors[(i, order[j])]);
             let law = restitution::from_eigenvectors(&v, 0.8);
             let gap = (law - stiffness_limit(n, 0.8).unwrap()).amax();
-            let kn = model.modal_stiffness[n - 1];
+            let kn = model.modal_stiffness()[n - 1];
             assert!(
                 gap < 10.0 * kn / k + 1e-12,
                 "n={n} k={ratio}k1: gap {gap:e}"
@@ -199,7 +199,7 @@ fn effective_restitution_against_the_exact_one_mode_ratio() {
         .collect();
     let lx: Vec<f64> = eps.iter().map(|e| e.ln()).collect();
     let ly: Vec<f64> = err.iter().map(|e| e.ln()).collect();
-    let order = impacting_cantilever::scenes::spectrum::fitted_slope(&lx, &ly);
+    let order = impacting_cantilever::verification::fitted_slope(&lx, &ly);
     assert!((order - 2.0).abs() < 0.1, "order {order}");
     // the two-term expansion matches up to its remainder, relatively O((k₁ε)²) (measured
     // 1.2e-5 at ε = 1e-3, so 20ε²), plus the round-off of r_e − exact, two numbers near 1

@@ -2,15 +2,16 @@
 //! compliant model's convergence to it as k → ∞ (Nordmark).
 
 use impacting_cantilever::galerkin::{self, GalerkinModel, GalerkinParams};
+use impacting_cantilever::problems;
 use impacting_cantilever::restitution::impulse_response;
 use impacting_cantilever::rigid::{Outcome, RigidEvent, RigidImpact};
-use impacting_cantilever::simulator::Simulator;
+use impacting_cantilever::sim::Simulator;
 use nalgebra::DVector;
 use std::f64::consts::PI;
 
 fn one_mode(gap: f64, r: f64) -> RigidImpact {
     let m = GalerkinModel::new(GalerkinParams::new(1, 0.0).with_gap(gap)).unwrap();
-    RigidImpact::new(Simulator::new(m).unwrap(), impulse_response(1, r).unwrap())
+    RigidImpact::new(Simulator::new(m).unwrap(), impulse_response(1, r).unwrap()).unwrap()
 }
 
 fn impacts(run: &impacting_cantilever::rigid::RigidRun) -> Vec<(f64, f64, f64)> {
@@ -93,17 +94,20 @@ fn compliant_single_mode_converges_to_the_rigid_impact_oscillator() {
     // velocity approaches the rigid one (r = 1, the compliant contact's limit) like k^(−1/2),
     // the order of the contact duration π/√k.
     use impacting_cantilever::orbit::{self, OrbitKind};
-    use impacting_cantilever::scenes::fig4::model;
-    let rigid_model = model(1, 1.0, 0.01, 1.5);
-    let sim = Simulator::new(rigid_model).unwrap();
-    let rigid = RigidImpact::new(sim.clone(), impulse_response(1, 1.0).unwrap());
+    let case = |k_over_k1| problems::Forced {
+        k_over_k1,
+        omega_over_w1: 1.5,
+        ..problems::figure4(1)
+    };
+    let sim = Simulator::new(case(1.0).model().unwrap()).unwrap();
+    let rigid = RigidImpact::new(sim.clone(), impulse_response(1, 1.0).unwrap()).unwrap();
     let run = rigid.run(&DVector::zeros(2), 1040.0 * sim.period());
     let v_rigid = impacts(&run).last().unwrap().1;
     let ks = [1e4, 1e5, 1e6];
     let gaps: Vec<f64> = ks
         .iter()
         .map(|&k| {
-            let s = Simulator::new(model(1, k, 0.01, 1.5)).unwrap();
+            let s = Simulator::new(case(k).model().unwrap()).unwrap();
             let o = orbit::settle(&s, &DVector::zeros(2), 1000, 40, 0);
             assert_eq!(o.kind, OrbitKind::Periodic { m: 1, n: 1 }, "k = {k:e} k₁");
             let v = o
@@ -118,7 +122,7 @@ fn compliant_single_mode_converges_to_the_rigid_impact_oscillator() {
         .collect();
     let lx: Vec<f64> = ks.iter().map(|k| k.ln()).collect();
     let ly: Vec<f64> = gaps.iter().map(|g| g.ln()).collect();
-    let rate = impacting_cantilever::scenes::spectrum::fitted_slope(&lx, &ly);
+    let rate = impacting_cantilever::verification::fitted_slope(&lx, &ly);
     // measured −0.51 over these three decades
     assert!((rate + 0.5).abs() < 0.1, "rate {rate}, gaps {gaps:?}");
 }
@@ -132,7 +136,8 @@ fn multi_mode_chatter_stops_with_an_explicit_outcome() {
     let model = RigidImpact::new(
         Simulator::new(m).unwrap(),
         impulse_response(2, 0.5).unwrap(),
-    );
+    )
+    .unwrap();
     let x0 = DVector::from_vec(vec![gap / 2.0, 0.0, -0.5, 0.0]);
     let run = model.run(&x0, 50.0);
     match run.outcome {

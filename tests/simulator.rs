@@ -1,9 +1,10 @@
 //! Code verification of the exact simulator and of the independent reference integrator:
 //! closed forms, certified contact detection, energy balance, cross-verification.
 
+use impacting_cantilever::dopri5::{self as reference, Tolerances};
 use impacting_cantilever::galerkin::{self, Forcing, GalerkinModel, GalerkinParams, Region};
-use impacting_cantilever::reference::{self, Tolerances};
-use impacting_cantilever::simulator::{Clock, Observe, Simulator};
+use impacting_cantilever::problems::{self, linear_response as oscillator};
+use impacting_cantilever::sim::{Dense, Energy, Events, Simulator, Strobe, TipMax};
 use nalgebra::DVector;
 use std::f64::consts::PI;
 
@@ -17,43 +18,16 @@ fn w1() -> f64 {
     galerkin::first_frequency()
 }
 
-/// The Figure 4 model: k = 100 k₁, ζ₁ = 0.01, d₀ = 0, ω = 2(β₁⁻)², eq (37) forcing.
+/// The Figure 4 model (k = 100 k₁, ζ₁ = 0.01, d₀ = 0, ω = 2(β₁⁻)²) with N modes.
 fn fig4(n: usize) -> GalerkinModel {
-    GalerkinModel::new(
-        GalerkinParams::new(n, 100.0 * k1())
-            .with_zeta1(0.01)
-            .with_forcing(Forcing::paper(2.0 * w1())),
-    )
-    .unwrap()
+    problems::figure4(n).model().unwrap()
 }
 
-/// A linear model: N modes, material damping ζ₁, eq (37) forcing at ω/(β₁⁻)², and the stop
-/// out of reach (d₀ = 10⁶), so the flow never switches.
+/// The linear model: the stop out of reach, so the flow never switches.
 fn out_of_reach(n: usize, zeta1: f64, omega_over_w1: f64) -> GalerkinModel {
-    GalerkinModel::new(
-        GalerkinParams::new(n, 100.0 * k1())
-            .with_gap(1e6)
-            .with_zeta1(zeta1)
-            .with_forcing(Forcing::paper(omega_over_w1 * w1())),
-    )
-    .unwrap()
-}
-
-/// Closed form of ẍ + cẋ + kx = F cos ωt, underdamped, from (x0, v0).
-fn oscillator(k: f64, c: f64, f: f64, omega: f64, x0: f64, v0: f64, t: f64) -> (f64, f64) {
-    let den = (k - omega * omega).powi(2) + (c * omega).powi(2);
-    let (pr, pi) = (f * (k - omega * omega) / den, f * c * omega / den);
-    // x_p = pr cos ωt + pi sin ωt
-    let xp = |t: f64| pr * (omega * t).cos() + pi * (omega * t).sin();
-    let vp = |t: f64| omega * (-pr * (omega * t).sin() + pi * (omega * t).cos());
-    let wd = (k - c * c / 4.0).sqrt();
-    let a = x0 - xp(0.0);
-    let b = (v0 - vp(0.0) + c / 2.0 * a) / wd;
-    let e = (-c * t / 2.0).exp();
-    let (s, co) = (wd * t).sin_cos();
-    let xh = e * (a * co + b * s);
-    let vh = e * (-c / 2.0 * (a * co + b * s) + wd * (-a * s + b * co));
-    (xp(t) + xh, vp(t) + vh)
+    problems::out_of_reach(n, zeta1, omega_over_w1)
+        .model()
+        .unwrap()
 }
 
 #[test]
@@ -64,8 +38,8 @@ fn reference_integrator_matches_the_closed_form_forced_oscillator() {
     let t = 10.0;
     let (xe, ve) = oscillator(
         k1(),
-        m.damping[0],
-        m.forcing_amplitude[0],
+        m.damping()[0],
+        m.forcing_amplitude()[0],
         1.3 * w1(),
         0.2,
         -0.4,
@@ -101,12 +75,12 @@ fn exact_simulator_matches_the_closed_form_forced_oscillator() {
     let m = out_of_reach(1, 0.05, 1.3);
     let sim = Simulator::new(m.clone()).unwrap();
     let x0 = DVector::from_vec(vec![0.2, -0.4]);
-    let (x, _) = sim.run(&x0, 7, Observe::default());
+    let x = sim.run(&x0, 7, &mut ()).state;
     let t = 7.0 * sim.period();
     let (xe, ve) = oscillator(
         k1(),
-        m.damping[0],
-        m.forcing_amplitude[0],
+        m.damping()[0],
+        m.forcing_amplitude()[0],
         1.3 * w1(),
         0.2,
         -0.4,
@@ -124,11 +98,8 @@ fn contact_passage_times_match_the_closed_form() {
     let m = GalerkinModel::new(GalerkinParams::new(1, k)).unwrap();
     let sim = Simulator::new(m.clone()).unwrap();
     let x0 = DVector::from_vec(vec![0.0, 1.0]);
-    let observe = Observe {
-        events: true,
-        ..Default::default()
-    };
-    let (_, trace) = sim.run(&x0, 3, observe);
+    let mut trace = Events::default();
+    sim.run(&x0, 3, &mut trace);
     let (tp, tm) = (PI / (k1() + k).sqrt(), PI / k1().sqrt());
     let mut expected = 0.0;
     assert!(trace.events.len() >= 4);
@@ -161,13 +132,10 @@ fn contact_passage_times_match_the_closed_form() {
 #[test]
 fn energy_balance_over_1000_periods() {
     // the issue: imbalance ≤ 1e-9 for N = 10 at k = 100 k₁ and for N = 40 at k = 1e5 k₁
-    let observe = Observe {
-        energy: true,
-        ..Default::default()
-    };
     let sim = Simulator::new(fig4(10)).unwrap();
-    let (_, t) = sim.run(&DVector::zeros(20), 1000, observe);
-    let e = t.energy.unwrap();
+    let mut t = Energy::default();
+    sim.run(&DVector::zeros(20), 1000, &mut t);
+    let e = t.budget;
     assert!(e.dissipated > 0.0 && e.work > 0.0);
     assert!(
         e.relative_imbalance() < 1e-9,
@@ -182,8 +150,9 @@ fn energy_balance_over_1000_periods() {
     )
     .unwrap();
     let sim = Simulator::new(stiff).unwrap();
-    let (_, t) = sim.run(&DVector::zeros(80), 1000, observe);
-    let e = t.energy.unwrap();
+    let mut t = Energy::default();
+    sim.run(&DVector::zeros(80), 1000, &mut t);
+    let e = t.budget;
     assert!(
         e.relative_imbalance() < 1e-9,
         "N=40: {:e}",
@@ -195,11 +164,6 @@ fn energy_balance_over_1000_periods() {
 fn extreme_cases_balance_energy_to_the_eigenvector_conditioning() {
     // Many modes, a huge stop stiffness, both at once, tiny and heavy damping (the high
     // modes then over-damped), a gap: from rest under the paper's forcing.
-    let observe = Observe {
-        events: true,
-        energy: true,
-        ..Default::default()
-    };
     for (n, k_over_k1, zeta1, gap, periods) in [
         (100, 1e3, 0.01, 0.0, 50),
         (20, 1e8, 0.01, 0.0, 50),
@@ -216,7 +180,10 @@ fn extreme_cases_balance_energy_to_the_eigenvector_conditioning() {
         )
         .unwrap();
         let sim = Simulator::new(model).unwrap();
-        let (x, t) = sim.run(&DVector::zeros(2 * n), periods, observe);
+        let (mut t, mut energy) = (Events::default(), Energy::default());
+        let x = sim
+            .run(&DVector::zeros(2 * n), periods, &mut (&mut t, &mut energy))
+            .state;
         let case = format!("N={n} k={k_over_k1:e}k1 zeta1={zeta1} d0={gap}");
         assert!(x.iter().all(|v| v.is_finite()), "{case}");
         assert!(!t.events.is_empty(), "{case}: the stop is reached");
@@ -229,8 +196,8 @@ fn extreme_cases_balance_energy_to_the_eigenvector_conditioning() {
         // Projecting onto an eigenbasis of condition κ loses κε relative per segment, and
         // the imbalance sums those losses over the run's energy flow: allow 10κε. Measured
         // 1.5e-9 at N = 100, 1e8 k₁ (κ = 7e6, κε = 1.6e-9); ≤ 1.3e-10 elsewhere.
-        let kappa = sim.free.condition.max(sim.contact.condition);
-        let imbalance = t.energy.unwrap().relative_imbalance();
+        let kappa = sim.condition();
+        let imbalance = energy.budget.relative_imbalance();
         assert!(
             imbalance < 10.0 * kappa * f64::EPSILON,
             "{case}: imbalance {imbalance:e}, κ = {kappa:e}"
@@ -246,11 +213,8 @@ fn cross_verification_with_the_reference_integrator_on_figure_4() {
         let m = fig4(n);
         let sim = Simulator::new(m.clone()).unwrap();
         let x0 = DVector::zeros(2 * n);
-        let observe = Observe {
-            events: true,
-            ..Default::default()
-        };
-        let (x, trace) = sim.run(&x0, 50, observe);
+        let mut trace = Events::default();
+        let x = sim.run(&x0, 50, &mut trace).state;
         let t_end = 50.0 * sim.period();
         let r = reference::integrate(
             &m,
@@ -294,13 +258,9 @@ fn near_grazing_contacts_are_found_and_a_naive_sampler_misses_them() {
         let m = GalerkinModel::new(GalerkinParams::new(1, 100.0 * k1()).with_gap(gap)).unwrap();
         let sim = Simulator::new(m).unwrap();
         let x0 = DVector::from_vec(vec![0.0, a * w1()]);
-        let observe = Observe {
-            events: true,
-            dense_per_period: 1000,
-            ..Default::default()
-        };
+        let (mut trace, mut dense) = (Events::default(), Dense::new(1000));
         // unforced: one "period" is one time unit; ω₁ ≈ 3.5, so 3 units hold ≥ 1 crest
-        let (_, trace) = sim.run(&x0, 3, observe);
+        sim.run(&x0, 3, &mut (&mut trace, &mut dense));
         // crests at t = (π/2 + 2πj)/ω₁ < 3
         let crests = ((3.0 * w1() - PI / 2.0) / (2.0 * PI)).floor() as usize + 1;
         assert_eq!(
@@ -311,7 +271,7 @@ fn near_grazing_contacts_are_found_and_a_naive_sampler_misses_them() {
         assert!(trace.events.iter().all(|e| !e.grazing));
         if depth <= 1e-8 {
             assert_eq!(
-                naive_crossings(&trace.dense, gap),
+                naive_crossings(&dense.samples, gap),
                 0,
                 "the naive sampler misses them"
             );
@@ -326,16 +286,12 @@ fn double_crossings_inside_one_fast_period_are_found() {
     // one mode-5 period and falls back. Sampling 20 times per unit time misses it.
     let m = GalerkinModel::new(GalerkinParams::new(5, 1000.0 * k1()).with_gap(1.0)).unwrap();
     let sim = Simulator::new(m.clone()).unwrap();
-    let w5 = m.beta[4].powi(2);
+    let w5 = m.beta()[4].powi(2);
     let mut x0 = DVector::zeros(10);
     x0[0] = 0.4994;
     x0[4] = -0.002;
-    let observe = Observe {
-        events: true,
-        dense_per_period: 20,
-        ..Default::default()
-    };
-    let (_, trace) = sim.run(&x0, 1, observe);
+    let (mut trace, mut dense) = (Events::default(), Dense::new(20));
+    sim.run(&x0, 1, &mut (&mut trace, &mut dense));
     assert!(
         trace.events.len() >= 2,
         "found {} events",
@@ -348,7 +304,7 @@ fn double_crossings_inside_one_fast_period_are_found() {
         "both inside the first mode-5 period"
     );
     assert_eq!(
-        naive_crossings(&trace.dense[..3], 1.0),
+        naive_crossings(&dense.samples[..3], 1.0),
         0,
         "the naive sampler misses them"
     );
@@ -374,14 +330,12 @@ fn certified_maximum_of_the_linear_response_is_its_amplitude() {
     // + d_s exactly, so max d = |P| + d_s (here d_s = 0).
     for n in [1, 3, 10] {
         let sim = Simulator::new(out_of_reach(n, 0.01, 0.7)).unwrap();
-        let x0 = sim.free.particular(0.0);
-        let observe = Observe {
-            max_tip: true,
-            ..Default::default()
-        };
-        let (_, t) = sim.run(&x0, 3, observe);
-        let m = t.max_tip.unwrap();
-        let amplitude = sim.free.tip_forced.norm();
+        let free = sim.flow(Region::Free);
+        let x0 = free.particular(0.0);
+        let mut t = TipMax::default();
+        sim.run(&x0, 3, &mut t);
+        let m = t.maximum.unwrap();
+        let amplitude = free.tip_forced().norm();
         // the certificate's slack (64ε of the signal scale) plus round-off of d itself
         assert!(
             (m.value - amplitude).abs() <= m.tolerance + 1e-14 * amplitude,
@@ -391,7 +345,7 @@ fn certified_maximum_of_the_linear_response_is_its_amplitude() {
         // attained where the phase of P e^{iωt} is a multiple of 2π; near the top
         // d = |P|(1 − θ²/2), so a value exact to ~1e-16 fixes θ only to ~1e-8: 1e-6 is that
         // resolution with margin
-        let phase = sim.free.tip_forced.arg() + sim.free.omega * m.time;
+        let phase = free.tip_forced().arg() + free.omega() * m.time;
         let off = (phase / (2.0 * PI)).round() * 2.0 * PI - phase;
         assert!(off.abs() < 1e-6, "N={n}: phase off by {off:e}");
     }
@@ -411,25 +365,15 @@ fn certified_maximum_bounds_a_fine_sampling_on_impacting_orbits() {
         )
         .unwrap();
         let sim = Simulator::new(model).unwrap();
-        let (x, _) = sim.run(&DVector::zeros(2 * n), 100, Observe::default());
-        let start = Clock {
-            period: sim.period(),
-            cycles: 100,
-            offset: 0.0,
-        };
-        let certified = Observe {
-            max_tip: true,
-            ..Default::default()
-        };
-        let (_, t) = sim.run_from(&x, start, 4, certified);
-        let m = t.max_tip.unwrap();
+        let x = sim.run(&DVector::zeros(2 * n), 100, &mut ()).state;
+        let start = sim.clock_at_cycle(100);
+        let mut t = TipMax::default();
+        sim.run_from(&x, start, 4, &mut t);
+        let m = t.maximum.unwrap();
         let per_period = 20_000;
-        let sampled = Observe {
-            dense_per_period: per_period,
-            ..Default::default()
-        };
-        let (_, dense) = sim.run_from(&x, start, 4, sampled);
-        let d: Vec<f64> = dense.dense.iter().map(|p| p.1).collect();
+        let mut dense = Dense::new(per_period);
+        sim.run_from(&x, start, 4, &mut dense);
+        let d: Vec<f64> = dense.samples.iter().map(|p| p.1).collect();
         let best = d.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
         let dt = sim.period() / per_period as f64;
         let curvature = d
@@ -460,7 +404,7 @@ fn expm_grid_events(m: &GalerkinModel, x0: &DVector<f64>, t_end: f64, dt: f64) -
     let systems = [augmented(m, Region::Free), augmented(m, Region::Contact)];
     let steps = [(&systems[0] * dt).exp(), (&systems[1] * dt).exp()];
     let index = |r: Region| usize::from(r == Region::Contact);
-    let gap = |z: &DVector<f64>| m.tip.dot(&z.rows(0, n)) - m.params.gap;
+    let gap = |z: &DVector<f64>| m.tip().dot(&z.rows(0, n)) - m.params().gap;
     let left = |r: Region, z: &DVector<f64>| match r {
         Region::Free => gap(z) >= 0.0,
         Region::Contact => gap(z) < 0.0,
@@ -519,11 +463,8 @@ fn stiff_cases_agree_with_an_exponential_grid_reference() {
         .unwrap();
         let sim = Simulator::new(model.clone()).unwrap();
         let x0 = DVector::zeros(40);
-        let observe = Observe {
-            events: true,
-            ..Default::default()
-        };
-        let (_, trace) = sim.run(&x0, periods as u64, observe);
+        let mut trace = Events::default();
+        sim.run(&x0, periods as u64, &mut trace);
         let reference = expm_grid_events(&model, &x0, periods * sim.period(), dt);
         let ours: Vec<(f64, bool)> = trace.events.iter().map(|e| (e.time, e.entering)).collect();
         assert_eq!(ours.len(), reference.len(), "k={k_over_k1:e}k1");
@@ -540,19 +481,23 @@ fn stiff_cases_agree_with_an_exponential_grid_reference() {
 }
 
 #[test]
-fn nothing_is_recorded_unless_asked() {
+fn observers_record_only_what_they_are_for() {
+    // events alone: no states unless asked for; the strobe forces period-long segments,
+    // events do not
     let sim = Simulator::new(fig4(3)).unwrap();
-    let (_, t) = sim.run(&DVector::zeros(6), 20, Observe::default());
-    assert!(t.events.is_empty() && t.strobe.is_empty() && t.dense.is_empty());
-    assert!(t.energy.is_none() && t.max_tip.is_none());
-    assert_eq!(t.stats.maximum_evaluations, 0);
-    let events_only = Observe {
-        events: true,
-        ..Default::default()
-    };
-    let (_, t) = sim.run(&DVector::zeros(6), 20, events_only);
-    assert!(!t.events.is_empty() && t.events.iter().all(|e| e.state.is_none()));
-    assert!(t.strobe.is_empty() && t.dense.is_empty());
+    let mut events = Events::default();
+    let plain = sim.run(&DVector::zeros(6), 20, &mut events);
+    assert!(!events.events.is_empty() && events.events.iter().all(|e| e.state.is_none()));
+    let (mut with_states, mut strobe) = (Events::with_states(), Strobe::default());
+    let strobed = sim.run(&DVector::zeros(6), 20, &mut (&mut with_states, &mut strobe));
+    assert!(with_states.events.iter().all(|e| e.state.is_some()));
+    // one sample at the start and one per period
+    assert_eq!(strobe.samples.len(), 21);
+    assert!(strobed.stats.segments > plain.stats.segments);
+    // the same switches either way, to round-off
+    for (a, b) in events.events.iter().zip(&with_states.events) {
+        assert!((a.time - b.time).abs() < 1e-12 * a.time);
+    }
 }
 
 #[test]
@@ -561,8 +506,8 @@ fn forcing_phase_stays_exact_over_long_runs() {
     // and the state at ωt = 0 mod 2π must be the particular solution x_p(0) to round-off.
     let m = out_of_reach(3, 0.01, 2.0);
     let sim = Simulator::new(m).unwrap();
-    let (x, _) = sim.run(&DVector::zeros(6), 10_000, Observe::default());
-    let xp = sim.free.particular(0.0);
+    let x = sim.run(&DVector::zeros(6), 10_000, &mut ()).state;
+    let xp = sim.flow(Region::Free).particular(0.0);
     let err = (&x - &xp).amax() / xp.amax();
     assert!(err < 1e-12, "relative error {err:e}");
 }
@@ -571,20 +516,30 @@ fn forcing_phase_stays_exact_over_long_runs() {
 fn chained_runs_equal_one_long_run() {
     let sim = Simulator::new(fig4(3)).unwrap();
     let x0 = DVector::zeros(6);
-    let (long, _) = sim.run(&x0, 40, Observe::default());
-    let mut x = x0;
-    let mut clock = impacting_cantilever::simulator::Clock {
-        period: sim.period(),
-        cycles: 0,
-        offset: 0.0,
-    };
+    let long = sim.run(&x0, 40, &mut ()).state;
+    let mut x = x0.clone();
+    let mut clock = sim.clock_at_cycle(0);
     for _ in 0..40 {
-        let (next, _) = sim.run_from(&x, clock, 1, Observe::default());
-        x = next;
-        clock.cycles += 1;
+        let next = sim.run_from(&x, clock, 1, &mut ());
+        x = next.state;
+        clock = next.clock;
     }
     // the same exact flow split at period boundaries: round-off only
     assert!((&x - &long).amax() < 1e-12 * long.amax());
+    // and split at arbitrary times inside periods (run_until): round-off only
+    let mut x = x0;
+    let mut clock = sim.clock_at_cycle(0);
+    for j in 1..=57 {
+        let until = impacting_cantilever::sim::Clock::at_time(
+            sim.period(),
+            j as f64 * 40.0 * sim.period() / 57.0,
+        );
+        let next = sim.run_until(&x, clock, until, &mut ());
+        x = next.state;
+        clock = next.clock;
+    }
+    assert_eq!(clock.cycles, 40);
+    assert!((&x - &long).amax() < 1e-11 * long.amax());
 }
 
 #[test]
@@ -603,14 +558,8 @@ fn a_start_at_rest_on_the_stop_begins_in_contact() {
         impacting_cantilever::galerkin::Region::Free
     );
     let sim = Simulator::new(m).unwrap();
-    let (_, t) = sim.run(
-        &DVector::zeros(6),
-        1,
-        Observe {
-            events: true,
-            ..Default::default()
-        },
-    );
+    let mut t = Events::default();
+    sim.run(&DVector::zeros(6), 1, &mut t);
     assert!(
         !t.events[0].entering && t.events[0].time > 0.01,
         "first event: leaving contact"

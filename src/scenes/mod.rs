@@ -1,12 +1,27 @@
-//! Scenes: one per figure or analytic result of the paper. A scene takes its own parameter
-//! struct (with the paper's values as `Default`), computes only what its result needs, and
-//! returns plain serialisable data. Rendering lives in [`crate::render`]; the list of
-//! scenes and the glue between the two is [`crate::catalog`].
+//! Scenes: one per figure or analytic result of the paper, each in its own folder with
+//! its parameters, computation, key numbers, verdict (`mod.rs`) and rendering
+//! (`render.rs`); see [`crate::scene::Scene`]. Registering a scene is one line below; the
+//! command line, the book and the tests iterate the registry. No scene imports another.
 
-pub mod fig2;
-pub mod fig3abc;
-pub mod fig3d;
-pub mod fig4;
-pub mod fig5;
-pub mod spectrum;
-pub mod work_precision;
+use crate::scene::Entry;
+
+macro_rules! registry {
+    ($($module:ident :: $scene:ident),* $(,)?) => {
+        $(pub mod $module;)*
+
+        /// Every scene, in the book's order.
+        pub fn all() -> &'static [&'static dyn Entry] {
+            &[$(&$module::$scene),*]
+        }
+    };
+}
+
+registry! {
+    spectrum::Spectrum,
+    fig2::Fig2,
+    fig3abc::Fig3abc,
+    fig3d::Fig3d,
+    fig4::Fig4,
+    fig5::Fig5,
+    work_precision::WorkPrecision,
+}

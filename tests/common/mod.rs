@@ -8,13 +8,13 @@ use nalgebra::DMatrix;
 /// independently of our eigendecomposition.
 pub fn augmented(m: &GalerkinModel, region: Region) -> DMatrix<f64> {
     let n2 = 2 * m.modes();
-    let omega = m.params.forcing.as_ref().unwrap().omega;
+    let omega = m.params().forcing.as_ref().unwrap().omega;
     let mut big = DMatrix::zeros(n2 + 3, n2 + 3);
     big.view_mut((0, 0), (n2, n2))
         .copy_from(&m.state_matrix(region));
     let preload = m.stop_preload(region);
     for j in 0..m.modes() {
-        big[(m.modes() + j, n2)] = m.forcing_amplitude[j];
+        big[(m.modes() + j, n2)] = m.forcing_amplitude()[j];
         big[(m.modes() + j, n2 + 2)] = preload[j];
     }
     big[(n2, n2 + 1)] = -omega;

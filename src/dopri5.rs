@@ -1,5 +1,6 @@
-//! An independent reference integrator for cross-verification of [`crate::simulator`]:
-//! adaptive Dormand–Prince 5(4) (Dormand & Prince 1980; Hairer, Nørsett & Wanner,
+//! A Dormand–Prince 5(4) integrator with event location: the independent second method
+//! for cross-verification of the exact simulator ([`crate::sim`]): adaptive
+//! Dormand–Prince 5(4) (Dormand & Prince 1980; Hairer, Nørsett & Wanner,
 //! *Solving ODEs I*, §II.5) on ẋ = A^± x + F^±(t), written from the Butcher tableau and
 //! sharing nothing with the exact method but the model's matrices.
 //!
@@ -112,17 +113,17 @@ impl Rhs<'_> {
         let cos = (self.omega * t).cos();
         let stop = if region == Region::Contact {
             // −(k/4) φ(1) (φ(1)ᵀη − d₀) = −K_stop η + F_preload
-            let pen: f64 = (0..n).map(|i| m.tip[i] * x[i]).sum::<f64>() - m.params.gap;
-            m.params.stop_stiffness / 4.0 * pen
+            let pen: f64 = (0..n).map(|i| m.tip()[i] * x[i]).sum::<f64>() - m.params().gap;
+            m.params().stop_stiffness / 4.0 * pen
         } else {
             0.0
         };
         for j in 0..n {
             out[j] = x[n + j];
-            out[n + j] = m.forcing_amplitude[j] * cos
-                - m.modal_stiffness[j] * x[j]
-                - m.damping[j] * x[n + j]
-                - stop * m.tip[j];
+            out[n + j] = m.forcing_amplitude()[j] * cos
+                - m.modal_stiffness()[j] * x[j]
+                - m.damping()[j] * x[n + j]
+                - stop * m.tip()[j];
         }
     }
 }
@@ -156,12 +157,12 @@ fn step(
 
 /// Integrates from (0, x0) to t_end with event location.
 pub fn integrate(model: &GalerkinModel, x0: &DVector<f64>, t_end: f64, tol: Tolerances) -> RefRun {
-    let omega = model.params.forcing.as_ref().map_or(0.0, |f| f.omega);
+    let omega = model.params().forcing.as_ref().map_or(0.0, |f| f.omega);
     let rhs = Rhs { model, omega };
     let n = model.modes();
     let n2 = 2 * n;
-    let gap = model.params.gap;
-    let tip_gap = |x: &[f64]| (0..n).map(|i| model.tip[i] * x[i]).sum::<f64>() - gap;
+    let gap = model.params().gap;
+    let tip_gap = |x: &[f64]| (0..n).map(|i| model.tip()[i] * x[i]).sum::<f64>() - gap;
     let mut x: Vec<f64> = x0.iter().cloned().collect();
     // the model's rule (shared with the simulator): on the surface, velocity then
     // acceleration decide

@@ -1,7 +1,7 @@
 //! Figure 5: impact velocities on the impact section against k, one panel per N.
 
-use super::{cell, drawing, markdown_table, RenderError, WIDTH};
-use crate::scenes::fig5::Fig5Data;
+use crate::render::{cell, drawing, markdown_table, RenderError, WIDTH};
+use super::Fig5Data;
 use plotters::prelude::*;
 
 /// The SVG plot.

@@ -1,9 +1,9 @@
 //! Figure 3(a)–(c): simulated return velocities against the impact laws, and the gap's
 //! convergence for every N.
 
-use super::{draw_legend, drawing, markdown_table, palette, RenderError, WIDTH};
+use crate::render::{draw_legend, drawing, markdown_table, palette, RenderError, WIDTH};
 use crate::report::format_sig;
-use crate::scenes::fig3abc::Fig3abcData;
+use super::Fig3abcData;
 use plotters::prelude::*;
 
 fn panel<DB: DrawingBackend>(

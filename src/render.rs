@@ -1,13 +1,6 @@
-//! Rendering of scene data: SVG plots (plotters' SVG backend, which writes text as SVG
-//! `<text>` and so needs no system fonts) and markdown tables. No numerics here.
-
-pub mod fig2;
-pub mod fig3abc;
-pub mod fig3d;
-pub mod fig4;
-pub mod fig5;
-pub mod spectrum;
-pub mod work_precision;
+//! Shared rendering helpers for the scenes' `render.rs`: SVG plots (plotters' SVG backend,
+//! which writes text as SVG `<text>` and so needs no system fonts) and markdown tables.
+//! No numerics here.
 
 use plotters::prelude::*;
 

@@ -1,10 +1,10 @@
 //! Figure 4: one period of each orbit — tip displacement against time and the phase
 //! portrait — free flight in blue, contact in red.
 
-use super::{drawing, markdown_table, RenderError, WIDTH};
+use crate::render::{drawing, markdown_table, RenderError, WIDTH};
 use crate::orbit::OrbitKind;
 use crate::report::format_sig;
-use crate::scenes::fig4::Fig4Data;
+use super::Fig4Data;
 use plotters::prelude::*;
 
 const FREE: RGBColor = RGBColor(0, 114, 178);

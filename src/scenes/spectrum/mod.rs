@@ -4,9 +4,14 @@
 //! ratio k₂/k₁ quoted in §5.3 (≈ 39.3), the frequency curves (β_i^+(k))² across k, and the
 //! order and coefficient of the remainder of the small-k law (4).
 
+pub mod render;
+
+use crate::report::KeyNumbers;
+use crate::scene::{Outcome, Progress, Rendered, Resolution, Scene, Verdict};
 use crate::continuum;
 use crate::error::ParameterError;
 use crate::golden::GoldenRoots;
+use crate::verification::fitted_slope;
 use serde::Serialize;
 
 /// What the scene computes.
@@ -101,15 +106,6 @@ fn check(i: usize, ours: f64, golden: f64) -> RootCheck {
     }
 }
 
-/// Least-squares slope of y against x.
-pub fn fitted_slope(x: &[f64], y: &[f64]) -> f64 {
-    let n = x.len() as f64;
-    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
-    let sxy: f64 = x.iter().zip(y).map(|(a, b)| (a - mx) * (b - my)).sum();
-    let sxx: f64 = x.iter().map(|a| (a - mx) * (a - mx)).sum();
-    sxy / sxx
-}
-
 /// The remainder of eq (4) for mode i over a ladder of k/k₁.
 pub fn small_k_law(i: usize, ladder: &[f64]) -> Result<SmallKLaw, ParameterError> {
     let k1 = continuum::modal_stiffness(1)?;
@@ -198,4 +194,81 @@ pub fn compute(params: &SpectrumParams) -> Result<SpectrumData, ParameterError> 
         frequency_pinned,
         small_k: small_k_law(1, &params.small_k_ladder)?,
     })
+}
+
+/// The scene.
+pub struct Spectrum;
+
+impl Scene for Spectrum {
+    const NAME: &'static str = "spectrum";
+    const PAPER: &'static str = "§2.1, eqs (3)-(4)";
+    const SUMMARY: &'static str =
+        "continuum roots beta_i (free, clamped-pinned, finite k) vs golden; k2/k1; small-k law";
+    const CLAIM: &'static str = "The roots of eq (3) move from the cantilever to the clamped-pinned values; $(\\beta_i^+)^4 = (\\beta_i^-)^4 + k + O(k^2)$; $k_2 \\approx 39.3k_1$.";
+    const CHAPTER: &'static str = "spectrum.md";
+    type Params = SpectrumParams;
+    type Data = SpectrumData;
+
+    fn params(_: Resolution) -> SpectrumParams {
+        SpectrumParams::default()
+    }
+
+    fn compute(p: &SpectrumParams, _: &dyn Progress) -> Result<SpectrumData, crate::error::Error> {
+        Ok(compute(p)?)
+    }
+
+    fn key_numbers(d: &SpectrumData) -> KeyNumbers {
+        let mut k = KeyNumbers::default();
+        // Roots are resolved to ~1e-15 relative; 13 figures leave margin for libm differences.
+        for c in d.free.iter().filter(|c| c.i <= 5) {
+            k.float(format!("beta_free_{}", c.i), c.ours, 13);
+        }
+        for c in d.clamped_pinned.iter().filter(|c| c.i <= 5) {
+            k.float(format!("beta_pinned_{}", c.i), c.ours, 13);
+        }
+        k.float("k1", d.k1, 12);
+        k.float("k2_over_k1", d.k2_over_k1, 10);
+        // The fitted order is a regression over 7 points; 3 figures are stable.
+        k.float("small_k_fitted_order", d.small_k.fitted_order, 3);
+        k.float("small_k_coefficient", d.small_k.fitted_coefficient, 4);
+        k.float(
+            "small_k_coefficient_theory",
+            d.small_k.predicted_coefficient,
+            4,
+        );
+        k
+    }
+
+    fn verdict(d: &SpectrumData) -> Verdict {
+        let worst = d
+            .free
+            .iter()
+            .chain(&d.clamped_pinned)
+            .chain(d.finite_k.iter().map(|p| &p.1))
+            .map(|c| c.rel_diff)
+            .fold(0.0, f64::max);
+        // the paper prints 39.3: half a unit in its last place; the order of the remainder
+        // of eq (4) is 2 (a 7-point fit resolves it to ~1e-2)
+        let ratio_ok = (d.k2_over_k1 - 39.3).abs() <= 0.05;
+        let order_ok = (d.small_k.fitted_order - 2.0).abs() < 0.05;
+        Verdict {
+            outcome: if worst < 1e-13 && ratio_ok && order_ok {
+                Outcome::Reproduced
+            } else {
+                Outcome::Partly
+            },
+            evidence: format!(
+                "roots match 50-digit mpmath to {:.1e}; $k_2/k_1$ = {:.4}; remainder of (4) of order {:.2}",
+                worst, d.k2_over_k1, d.small_k.fitted_order
+            ),
+        }
+    }
+
+    fn render(d: &SpectrumData) -> Result<Rendered, crate::render::RenderError> {
+        Ok(Rendered {
+            svg: render::plot(d)?,
+            table: render::table(d),
+            extra_tables: Vec::new(),
+        })
+    }
 }

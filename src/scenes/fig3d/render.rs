@@ -1,8 +1,8 @@
 //! Figure 3(d): post-impact velocity profiles per N, for the stiffness-limit and the
 //! collocation laws, with the pre-impact profile φ₁ dashed.
 
-use super::{draw_legend, drawing, markdown_table, palette, RenderError, WIDTH};
-use crate::scenes::fig3d::Fig3dData;
+use crate::render::{draw_legend, drawing, markdown_table, palette, RenderError, WIDTH};
+use super::Fig3dData;
 use plotters::prelude::*;
 
 /// The SVG plot.

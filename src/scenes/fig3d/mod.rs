@@ -7,6 +7,10 @@
 //! from the pre-impact profile φ₁ (= |η̇⁺ − e₁| for orthonormal modes) and the largest
 //! pointwise distance.
 
+pub mod render;
+
+use crate::report::KeyNumbers;
+use crate::scene::{Outcome, Progress, Rendered, Resolution, Scene, Verdict};
 use crate::continuum;
 use crate::error::ParameterError;
 use crate::restitution::{self, collocation, equally_spaced_points, stiffness_limit};
@@ -149,4 +153,78 @@ pub fn compute(p: &Fig3dParams) -> Result<Fig3dData, ParameterError> {
         phi1,
         profiles,
     })
+}
+
+/// The scene.
+pub struct Fig3d;
+
+impl Scene for Fig3d {
+    const NAME: &'static str = "fig3-d";
+    const PAPER: &'static str = "Fig 3(d), §4.4, eq (30)";
+    const SUMMARY: &'static str =
+        "post-impact velocity profile for v- = e1, r_e = 1, N = 1..100: [R]_N and [R]_C";
+    const CLAIM: &'static str =
+        "The post-impact velocity profile of the rigid-limit law does not converge as $N \\to \\infty$.";
+    const CHAPTER: &'static str = "fig3d.md";
+    type Params = Fig3dParams;
+    type Data = Fig3dData;
+
+    fn params(_: Resolution) -> Fig3dParams {
+        Fig3dParams::default()
+    }
+
+    fn compute(p: &Fig3dParams, _: &dyn Progress) -> Result<Fig3dData, crate::error::Error> {
+        Ok(compute(p)?)
+    }
+
+    fn key_numbers(d: &Fig3dData) -> KeyNumbers {
+        let mut k = KeyNumbers::default();
+        for p in &d.profiles {
+            let key = format!("{} N={}", p.law, p.modes);
+            if let Some(e) = &p.error {
+                k.text(format!("{key} error"), e.clone());
+                continue;
+            }
+            // sums of O(N) terms of size O(1): good to ~1e-13; 8 figures
+            for (s, v) in d.params.probes.iter().zip(&p.at_probes) {
+                k.float(format!("{key} w_t({s})"), *v, 8);
+            }
+            k.float(format!("{key} l2_norm"), p.l2_norm, 8);
+            k.float(format!("{key} l2_distance_from_phi1"), p.l2_distance, 8);
+            // sampled on 801 points: 3 figures
+            k.float(format!("{key} max_distance_from_phi1"), p.max_distance, 3);
+        }
+        k
+    }
+
+    fn verdict(d: &Fig3dData) -> Verdict {
+        let laws: Vec<&Profile> = d
+            .profiles
+            .iter()
+            .filter(|p| p.law == "stiffness-limit" && p.error.is_none())
+            .collect();
+        // no uniform convergence: the sup distance from the pre-impact profile stays 4
+        let sup = laws.iter().map(|p| p.max_distance).fold(f64::INFINITY, f64::min);
+        let largest = laws.iter().max_by_key(|p| p.modes);
+        Verdict {
+            outcome: if sup > 1.0 {
+                Outcome::Reproduced
+            } else {
+                Outcome::NotReproduced
+            },
+            evidence: format!(
+                "no uniform convergence (sup distance from the pre-impact profile ≥ {sup:.3} for every N), but $L^2$ convergence like $2/\\sqrt N$ to the pre-impact profile ({} at N = {})",
+                largest.map_or("—".into(), |p| format!("{:.3}", p.l2_distance)),
+                largest.map_or(0, |p| p.modes)
+            ),
+        }
+    }
+
+    fn render(d: &Fig3dData) -> Result<Rendered, crate::render::RenderError> {
+        Ok(Rendered {
+            svg: render::plot(d)?,
+            table: render::table(d),
+            extra_tables: Vec::new(),
+        })
+    }
 }

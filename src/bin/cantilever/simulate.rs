@@ -1,15 +1,16 @@
-//! `cantilever simulate`: the paper's forced simulation (§5.2) from rest — discard a
+//! `cantilever simulate` (the command; the engine is [`impacting_cantilever::sim`]): the paper's forced simulation (§5.2) from rest — discard a
 //! transient, record contact events, detect the period m and the contacts per period n.
 //!
 //! Parameters are in the CLI's units: k/k₁ and ω/(β₁⁻)². The forcing is eq (37) with the
 //! corrected amplitude (unit unconstrained tip amplitude at resonance; errata E2), and the
 //! damping is material, γ = 2ζ₁/(β₁⁻)² (errata E3).
 
-use crate::error::{self, ParameterError};
-use crate::flow::FlowError;
-use crate::galerkin::{self, Forcing, GalerkinModel, GalerkinParams};
-use crate::orbit::{detect_period, MAX_PERIOD, PERIODIC_TOLERANCE};
-use crate::simulator::{Clock, EnergyBudget, Event, Observe, Simulator, TipMaximum};
+use impacting_cantilever::error::{self, ParameterError};
+use impacting_cantilever::flow::FlowError;
+use impacting_cantilever::galerkin::{self, GalerkinModel};
+use impacting_cantilever::orbit::{detect_period, MAX_PERIOD, PERIODIC_TOLERANCE};
+use impacting_cantilever::problems::Forced;
+use impacting_cantilever::sim::{Energy, Event, Events, Simulator, Strobe, TipMax, TipMaximum};
 use nalgebra::DVector;
 use std::time::Instant;
 
@@ -89,14 +90,15 @@ pub fn model(args: &Args) -> Result<GalerkinModel, ParameterError> {
             "at least one period in all",
         ));
     }
-    let p = GalerkinParams::new(
-        args.modes,
-        args.stop_stiffness * galerkin::first_modal_stiffness(),
-    )
-    .with_gap(args.gap)
-    .with_zeta1(args.zeta1)
-    .with_forcing(Forcing::paper(args.omega * galerkin::first_frequency()));
-    GalerkinModel::new(p)
+    Forced {
+        modes: args.modes,
+        k_over_k1: args.stop_stiffness,
+        zeta1: args.zeta1,
+        omega_over_w1: args.omega,
+        gap: args.gap,
+        printed_eq37_amplitude: false,
+    }
+    .model()
 }
 
 /// Runs the command.
@@ -104,59 +106,46 @@ pub fn run(args: &Args) -> Result<Report, Error> {
     let model = model(args)?;
     let started = Instant::now();
     let sim = Simulator::new(model)?;
-    let n2 = 2 * sim.model.modes();
+    let n2 = 2 * sim.model().modes();
     let rest = DVector::zeros(n2);
-    let energy_only = Observe {
-        energy: true,
-        ..Default::default()
-    };
-    let (x, transient) = sim.run(&rest, args.periods, energy_only);
-    let start = Clock {
-        period: sim.period(),
-        cycles: args.periods as i64,
-        offset: 0.0,
-    };
-    let observe = Observe {
-        events: true,
-        strobe: true,
-        energy: true,
-        max_tip: true,
-        ..Default::default()
-    };
-    let (_, window) = sim.run_from(&x, start, args.record, observe);
+    let mut transient = Energy::default();
+    let x = sim.run(&rest, args.periods, &mut transient).state;
+    let start = sim.clock_at_cycle(args.periods as i64);
+    let (mut events, mut strobe, mut energy, mut max_tip) = (
+        Events::default(),
+        Strobe::default(),
+        Energy::default(),
+        TipMax::default(),
+    );
+    sim.run_from(
+        &x,
+        start,
+        args.record,
+        &mut (&mut events, &mut strobe, &mut energy, &mut max_tip),
+    );
     let wall_seconds = started.elapsed().as_secs_f64();
-    let strobe: Vec<DVector<f64>> = window.strobe.iter().map(|(_, x)| x.clone()).collect();
     let (period_m, periodicity_residual) = detect_period(
-        &strobe,
+        &strobe.states(),
         PERIODIC_TOLERANCE,
         MAX_PERIOD.min(args.record as usize / 2),
     );
     let last_cycle = start.cycles + args.record as i64;
     let from_cycle = last_cycle - period_m.unwrap_or(args.record) as i64;
-    let impacts_n = window
+    let impacts_n = events
         .events
         .iter()
         .filter(|e| e.entering && !e.grazing && e.clock.cycles >= from_cycle)
         .count() as u64;
-    let (a, b) = (
-        transient.energy.unwrap_or_default(),
-        window.energy.unwrap_or_default(),
-    );
-    let total = EnergyBudget {
-        initial: a.initial,
-        last: b.last,
-        work: a.work + b.work,
-        dissipated: a.dissipated + b.dissipated,
-    };
+    let total = transient.budget.then(&energy.budget);
     Ok(Report {
         args: args.clone(),
-        events: window.events,
+        events: events.events,
         period_m,
         periodicity_residual,
         impacts_n,
-        max_tip: window.max_tip,
+        max_tip: max_tip.maximum,
         energy_imbalance: total.relative_imbalance(),
-        eigenvector_condition: sim.free.condition.max(sim.contact.condition),
+        eigenvector_condition: sim.condition(),
         wall_seconds,
     })
 }

@@ -1,9 +1,9 @@
 //! The continuum spectrum: (β_i^+)² across k with the small-k law (4) and the
 //! clamped-pinned asymptotes; the remainder of (4) against k.
 
-use super::{cell, draw_legend, drawing, markdown_table, palette, RenderError, WIDTH};
+use crate::render::{cell, draw_legend, drawing, markdown_table, palette, RenderError, WIDTH};
 use crate::report::format_sig;
-use crate::scenes::spectrum::SpectrumData;
+use super::SpectrumData;
 use plotters::prelude::*;
 
 /// The SVG plot.

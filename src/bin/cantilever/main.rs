@@ -3,10 +3,13 @@
 //! Every bad input exits with status 2 and one line naming the parameter and what is
 //! allowed.
 
+mod progress;
+mod simulate;
+
 use clap::{Parser, Subcommand};
-use impacting_cantilever::catalog::{self, Resolution};
 use impacting_cantilever::error::{self, ParameterError};
-use impacting_cantilever::{continuum, galerkin, simulate};
+use impacting_cantilever::scene::{self, Resolution};
+use impacting_cantilever::{continuum, galerkin, scenes};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -112,10 +115,10 @@ impl From<ParameterError> for Failure {
     }
 }
 
-impl From<catalog::SceneError> for Failure {
-    fn from(e: catalog::SceneError) -> Self {
+impl From<impacting_cantilever::error::Error> for Failure {
+    fn from(e: impacting_cantilever::error::Error) -> Self {
         match e {
-            catalog::SceneError::Parameter(p) => Failure::BadInput(p),
+            impacting_cantilever::error::Error::Parameter(p) => Failure::BadInput(p),
             other => Failure::Other(other.to_string()),
         }
     }
@@ -124,25 +127,26 @@ impl From<catalog::SceneError> for Failure {
 fn run(cli: Cli) -> Result<(), Failure> {
     match cli.command {
         Command::List => {
-            for s in catalog::all() {
-                outln!("{:<10} {:<22} {}", s.name, s.paper, s.summary);
+            for s in scenes::all() {
+                outln!("{:<15} {:<24} {}", s.name(), s.paper(), s.summary());
             }
             Ok(())
         }
         Command::Scene { name, out, json } => {
-            let spec = catalog::find(&name)?;
-            let output = (spec.run)(Resolution::Book)?;
-            let dir = out.unwrap_or_else(|| PathBuf::from("out").join(spec.name));
-            catalog::write(&output, &dir)?;
+            let spec = scene::find(&name)?;
+            let output = spec.run(Resolution::Book, &progress::Bars::default())?;
+            let dir = out.unwrap_or_else(|| PathBuf::from("out").join(spec.name()));
+            scene::write(&output, &dir)?;
             if json {
                 let doc = serde_json::json!({
-                    "scene": spec.name,
-                    "paper": spec.paper,
+                    "scene": spec.name(),
+                    "paper": spec.paper(),
+                    "verdict": output.verdict,
                     "key_numbers": output.key_numbers.to_json(),
                 });
-                outln!("{}", serde_json::to_string_pretty(&doc).expect("json"));
+                outln!("{}", serde_json::to_string_pretty(&doc).unwrap_or_default());
             } else {
-                outln!("{}", output.table);
+                outln!("{}", output.rendered.table);
                 eprintln!("wrote {}", dir.display());
             }
             Ok(())
@@ -160,7 +164,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             if json {
                 outln!(
                     "{}",
-                    serde_json::to_string_pretty(&report.to_json()).expect("json")
+                    serde_json::to_string_pretty(&report.to_json()).unwrap_or_default()
                 );
             } else {
                 emit(&report.to_text());
@@ -197,14 +201,14 @@ fn modes_command(modes: usize, k_over_k1: f64, json: bool) -> Result<(), Failure
     }
     if json {
         let doc = serde_json::json!({"modes": modes, "k_over_k1": k_over_k1, "eigenvalues": rows});
-        outln!("{}", serde_json::to_string_pretty(&doc).expect("json"));
+        outln!("{}", serde_json::to_string_pretty(&doc).unwrap_or_default());
     }
     Ok(())
 }
 
 #[cfg(feature = "book")]
 fn book_command(book_dir: &std::path::Path) -> Result<(), Failure> {
-    impacting_cantilever::book::build(book_dir, Resolution::Book)
+    impacting_cantilever::book::build(book_dir, Resolution::Book, &progress::Bars::default())
         .map_err(|e| Failure::Other(format!("{e:#}")))
 }
 

@@ -2,6 +2,10 @@
 //! K⁺ (eq 9) against the continuum (β_i^+)⁴ (eq 3), and the scaled highest eigenvalue
 //! λ_N/(kN), which the paper says tends to 1 (eigenvector 𝟙/√N) as k → ∞.
 
+pub mod render;
+
+use crate::report::KeyNumbers;
+use crate::scene::{Outcome, Progress, Rendered, Resolution, Scene, Verdict};
 use crate::continuum;
 use crate::error::ParameterError;
 use crate::galerkin::contact_eigenvalues;
@@ -148,4 +152,87 @@ pub fn compute(params: &Fig2Params) -> Result<Fig2Data, ParameterError> {
         truncations,
         table,
     })
+}
+
+/// The scene.
+pub struct Fig2;
+
+impl Scene for Fig2 {
+    const NAME: &'static str = "fig2";
+    const PAPER: &'static str = "Fig 2, §2.3";
+    const SUMMARY: &'static str =
+        "eigenvalues of K+ for N = 1, 3, 10 vs exact (beta_i+)^4; lambda_N/(kN)";
+    const CLAIM: &'static str = "The Galerkin contact stiffness reproduces the continuum eigenvalues only while $k \\lesssim (\\beta_N)^3$; its highest eigenvalue diverges as $\\lambda_N \\to kN$.";
+    const CHAPTER: &'static str = "fig2.md";
+    type Params = Fig2Params;
+    type Data = Fig2Data;
+
+    fn params(_: Resolution) -> Fig2Params {
+        Fig2Params::default()
+    }
+
+    fn compute(p: &Fig2Params, _: &dyn Progress) -> Result<Fig2Data, crate::error::Error> {
+        Ok(compute(p)?)
+    }
+
+    fn key_numbers(d: &Fig2Data) -> KeyNumbers {
+        let mut k = KeyNumbers::default();
+        for r in &d.table {
+            let key = format!("N={} k/k1={} i={}", r.modes, r.k_over_k1, r.i);
+            // λ from the secular equation and (β⁺)⁴ are both good to ~1e-14 relative.
+            k.float(format!("{key} lambda"), r.lambda, 10);
+            k.float(format!("{key} exact"), r.exact, 10);
+            // The difference of two such numbers: its absolute accuracy is ~1e-13, so it is
+            // shown to 3 figures, and as round-off when below 1e-11.
+            if r.rel_error.abs() < 1e-11 {
+                k.text(format!("{key} rel_error"), "below 1e-11");
+            } else {
+                k.float(format!("{key} rel_error"), r.rel_error, 3);
+            }
+            if let Some(s) = r.scaled_highest {
+                k.float(format!("{key} lambda_N/(kN)"), s, 8);
+            }
+        }
+        k
+    }
+
+    fn verdict(d: &Fig2Data) -> Verdict {
+        let last = d.k_over_k1.len() - 1;
+        let k_top = d.k_over_k1[last] * d.k1;
+        // λ_N/(kN) − 1 = O(k_N/(kN)) (§2.3); Galerkin eigenvalues bound the continuum ones
+        // from above (Rayleigh–Ritz), to round-off
+        let limit_ok = d.truncations.iter().all(|t| {
+            let n = t.modes as f64;
+            (t.scaled_highest[last] - 1.0).abs() < 2.0 * d.exact[t.modes - 1][0] / (k_top * n)
+        });
+        let bounds_ok = d.truncations.iter().all(|t| {
+            (0..t.modes).all(|i| {
+                t.lambda[i]
+                    .iter()
+                    .zip(&d.exact[i])
+                    .all(|(l, e)| *l >= e * (1.0 - 1e-13))
+            })
+        });
+        let ten = d.truncations.iter().find(|t| t.modes == 10);
+        Verdict {
+            outcome: if limit_ok && bounds_ok {
+                Outcome::Reproduced
+            } else {
+                Outcome::Partly
+            },
+            evidence: format!(
+                "$\\lambda_N/(kN)$ = {} at $k = 10^6k_1$ (N = 10); Rayleigh–Ritz upper bounds hold at every $k$: {}",
+                ten.map_or("—".into(), |t| format!("{:.6}", t.scaled_highest[last])),
+                if bounds_ok { "yes" } else { "no" }
+            ),
+        }
+    }
+
+    fn render(d: &Fig2Data) -> Result<Rendered, crate::render::RenderError> {
+        Ok(Rendered {
+            svg: render::plot(d)?,
+            table: render::table(d),
+            extra_tables: Vec::new(),
+        })
+    }
 }

@@ -1,9 +1,9 @@
 //! Error against run time: event-time error and end-state error against wall time, one
 //! series per method.
 
-use super::{draw_legend, drawing, markdown_table, palette, RenderError, WIDTH};
+use crate::render::{draw_legend, drawing, markdown_table, palette, RenderError, WIDTH};
 use crate::report::format_sig;
-use crate::scenes::work_precision::WorkPrecisionData;
+use super::WorkPrecisionData;
 use plotters::prelude::*;
 
 /// Errors below this are drawn at this floor (they are round-off).

@@ -1,8 +1,8 @@
 //! Figure 2: eigenfrequencies of K⁺ (solid) and of the continuum (dashed) against k, for
 //! each N (panels a–c), and λ_N/(kN) (panel d).
 
-use super::{cell, draw_legend, drawing, markdown_table, palette, RenderError, WIDTH};
-use crate::scenes::fig2::Fig2Data;
+use crate::render::{cell, draw_legend, drawing, markdown_table, palette, RenderError, WIDTH};
+use super::Fig2Data;
 use plotters::prelude::*;
 
 /// The SVG plot.

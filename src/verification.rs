@@ -1,0 +1,104 @@
+//! Shared solution-verification helpers: observed orders of convergence and Richardson
+//! extrapolation with a grid convergence index (Roache 1998; ASME V&V 20).
+
+/// Least-squares slope of y against x.
+pub fn fitted_slope(x: &[f64], y: &[f64]) -> f64 {
+    let n = x.len() as f64;
+    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
+    let sxy: f64 = x.iter().zip(y).map(|(a, b)| (a - mx) * (b - my)).sum();
+    let sxx: f64 = x.iter().map(|a| (a - mx) * (a - mx)).sum();
+    sxy / sxx
+}
+
+/// The observed order of an error e(h) ∝ h^p: the least-squares slope of log e against
+/// log h over the points with e > 0.
+pub fn observed_order(h: &[f64], error: &[f64]) -> f64 {
+    let (lx, ly): (Vec<f64>, Vec<f64>) = h
+        .iter()
+        .zip(error)
+        .filter(|(_, e)| **e > 0.0)
+        .map(|(h, e)| (h.ln(), e.ln()))
+        .unzip();
+    fitted_slope(&lx, &ly)
+}
+
+/// Richardson extrapolation from three solutions on a refinement ladder with constant
+/// ratio r > 1: f₁ (finest), f₂, f₃ (coarsest).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub enum Richardson {
+    /// Monotone convergence: observed order p, extrapolated value and the grid convergence
+    /// index GCI = 1.25·|(f₁ − f₂)/f₁|/(r^p − 1) (a relative uncertainty of f₁).
+    Monotone {
+        /// p = ln((f₃ − f₂)/(f₂ − f₁))/ln r.
+        order: f64,
+        /// f₁ + (f₁ − f₂)/(r^p − 1).
+        extrapolated: f64,
+        /// The grid convergence index of f₁ (relative).
+        gci: f64,
+    },
+    /// The differences change sign: no order can be fitted; the spread of the three values
+    /// is the honest uncertainty.
+    Oscillatory {
+        /// max − min of the three values.
+        spread: f64,
+    },
+    /// f₁ = f₂ = f₃ to the last bit (converged beyond what the ladder can show).
+    Converged,
+}
+
+/// Richardson extrapolation of (f₁, f₂, f₃) with refinement ratio r (see [`Richardson`]).
+pub fn richardson(f1: f64, f2: f64, f3: f64, r: f64) -> Richardson {
+    let (d21, d32) = (f2 - f1, f3 - f2);
+    if d21 == 0.0 && d32 == 0.0 {
+        return Richardson::Converged;
+    }
+    if d21 == 0.0 || d32 == 0.0 || d21.signum() != d32.signum() {
+        let lo = f1.min(f2).min(f3);
+        let hi = f1.max(f2).max(f3);
+        return Richardson::Oscillatory { spread: hi - lo };
+    }
+    let order = (d32 / d21).ln() / r.ln();
+    let factor = r.powf(order) - 1.0;
+    Richardson::Monotone {
+        order,
+        extrapolated: f1 - d21 / factor,
+        gci: 1.25 * (d21 / f1).abs() / factor,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn slope_of_a_power_law_is_its_exponent() {
+        let h = [0.1, 0.05, 0.025, 0.0125];
+        let e: Vec<f64> = h.iter().map(|h: &f64| 3.0 * h.powi(2)).collect();
+        // exact data: only the rounding of the logarithms
+        assert!((observed_order(&h, &e) - 2.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn richardson_recovers_the_limit_of_an_exact_power_law() {
+        // f(h) = 1 + 0.5 h²: with r = 2 from h = 0.1, the extrapolation is exact
+        let f = |h: f64| 1.0 + 0.5 * h * h;
+        match richardson(f(0.025), f(0.05), f(0.1), 2.0) {
+            Richardson::Monotone {
+                order,
+                extrapolated,
+                gci,
+            } => {
+                assert!((order - 2.0).abs() < 1e-9);
+                assert!((extrapolated - 1.0).abs() < 1e-12);
+                // GCI = 1.25·|f₁ − f₂|/(3 f₁): a bound on |f₁ − 1|/f₁ here
+                assert!(gci > (f(0.025) - 1.0) / f(0.025));
+            }
+            other => panic!("{other:?}"),
+        }
+        assert!(matches!(
+            richardson(1.0, 1.1, 0.95, 2.0),
+            Richardson::Oscillatory { .. }
+        ));
+        assert_eq!(richardson(1.0, 1.0, 1.0, 2.0), Richardson::Converged);
+    }
+}
