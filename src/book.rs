@@ -76,16 +76,16 @@ pub fn build(root: &Path, resolution: Resolution, progress: &dyn Progress) -> Re
 /// The landing page's table: each result, the paper's claim, the verdict and its evidence,
 /// with a link to the chapter.
 pub fn summary_table(scenes: &[&dyn Entry], outputs: &[SceneOutput]) -> String {
-    let mut s =
-        String::from("| result | the paper's claim | verdict | evidence |\n|---|---|---|---|\n");
+    let mut s = String::from("| result | verdict | the paper's claim | our evidence |\n");
+    s.push_str("|---|---|---|---|\n");
     for (spec, out) in scenes.iter().zip(outputs) {
-        let link = spec.chapter().trim_end_matches(".md");
         s.push_str(&format!(
-            "| [{}]({link}.md) ({}) | {} | **{}** | {} |\n",
+            "| [{}]({}) ({}) | **{}** | {} | {} |\n",
             spec.name(),
+            spec.chapter(),
             spec.paper(),
-            spec.claim(),
             out.verdict.outcome,
+            spec.claim(),
             out.verdict.evidence
         ));
     }

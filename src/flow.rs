@@ -144,7 +144,7 @@ impl RegionFlow {
         let mut to_modal = DMatrix::zeros(2 * n, 2 * n);
         let mut from_modal = DMatrix::zeros(2 * n, 2 * n);
         let mut slot = 0;
-        for (k, pair) in conjugate_halves(&lambda) {
+        for (k, pair) in conjugate_halves(&lambda)? {
             let (row, col) = (v_inv.row(k), v.column(k));
             to_modal.row_mut(slot).copy_from(&row.map(|z| z.re));
             if pair {
@@ -303,8 +303,9 @@ pub fn decay(x: f64) -> f64 {
     }
 }
 
-/// Indices of eigenvalues with Im ≥ 0, each marked as a conjugate pair or a real one.
-fn conjugate_halves(lambda: &[Complex64]) -> Vec<(usize, bool)> {
+/// Indices of eigenvalues with Im ≥ 0, each marked as a conjugate pair or a real one
+/// (an error if a complex eigenvalue has no partner: the eigensolver failed).
+fn conjugate_halves(lambda: &[Complex64]) -> Result<Vec<(usize, bool)>, FlowError> {
     let mut used = vec![false; lambda.len()];
     let mut half = Vec::new();
     for k in 0..lambda.len() {
@@ -324,11 +325,11 @@ fn conjugate_halves(lambda: &[Complex64]) -> Vec<(usize, bool)> {
                     .norm()
                     .total_cmp(&(lambda[b] - lambda[k].conj()).norm())
             })
-            .expect("complex eigenvalues of a real matrix come in pairs");
+            .ok_or(FlowError::Eigen)?;
         used[partner] = true;
         half.push((if lambda[k].im > 0.0 { k } else { partner }, true));
     }
-    half
+    Ok(half)
 }
 
 fn norm1(m: &DMatrix<Complex64>) -> f64 {

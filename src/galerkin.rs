@@ -76,6 +76,15 @@ pub struct Forcing {
 }
 
 impl Forcing {
+    /// Forcing f(s) cos ωt with a profile f of your choosing (projected onto the modes by
+    /// quadrature).
+    pub fn from_fn(omega: f64, profile: impl Fn(f64) -> f64 + Send + Sync + 'static) -> Self {
+        Self {
+            omega,
+            profile: SpatialProfile::Function(Arc::new(profile)),
+        }
+    }
+
     /// The paper's forcing, eq (37), with the corrected amplitude, at frequency ω.
     pub fn paper(omega: f64) -> Self {
         Self {

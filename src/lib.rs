@@ -5,13 +5,46 @@
 //! non-convergence and the importance of stiffness matching*, Phil. Trans. R. Soc. A 371
 //! (2013) 20120434 — "the paper" throughout.
 //!
-//! Modules follow the paper's concepts:
-//! - [`continuum`]: the beam eigenproblem with a compliant stop (§2.1, eqs 1–4);
-//! - [`galerkin`]: the N-mode Galerkin compliant (bilinear) model (§2.2, §5.1, eqs 5–9,
-//!   31–35);
-//! - [`scenes`]: one computation per figure or analytic result, returning plain data;
-//! - [`render`]: plots and tables of scene data (no numerics);
-//! - [`numerics`], [`error`], [`report`]: shared building blocks.
+//! ```
+//! use impacting_cantilever::prelude::*;
+//! # fn main() -> Result<(), Error> {
+//! // the paper's Figure 4 model with N = 3 modes, from rest, 100 forcing periods
+//! let sim = Simulator::new(problems::figure4(3).model()?)?;
+//! let (mut events, mut energy) = (Events::default(), Energy::default());
+//! sim.run(&DVector::zeros(6), 100, &mut (&mut events, &mut energy));
+//! assert!(!events.events.is_empty() && energy.budget.relative_imbalance() < 1e-12);
+//! # Ok(())
+//! # }
+//! ```
+//!
+//! The crate map, one module per model variant or concept:
+//!
+//! | module | what |
+//! |---|---|
+//! | [`continuum`] | §2.1, eqs (1)–(4): the beam with a compliant stop, roots of eq (3), mode shapes (2) |
+//! | [`galerkin`] | §2.2, §5.1, eqs (5)–(9), (31)–(35): the N-mode Galerkin compliant (bilinear) model |
+//! | [`flow`] | eq (36): the exact solution inside one region |
+//! | [`sim`] | §5.2: the exact simulator through its switches — clock, signal, certified crossing search, maximum, energy, observers, driver |
+//! | [`dopri5`] | an independent Dormand–Prince 5(4) integrator with event location, for cross-verification |
+//! | [`restitution`] | §3–4, eqs (12), (14), (28)–(29): the modal restitution laws |
+//! | [`asymptotics`] | §4.1–4.3, eqs (18)–(19), (23): impact asymptotics as k → ∞ |
+//! | [`rigid`] | §3: the rigid-impact N-mode model with any law, and its chattering policy |
+//! | [`orbit`] | §5.2: the stroboscopic map, period detection (m, n), seeded random starts |
+//! | [`problems`] | the paper's parameter sets as named constructors (Figures 3, 4, 6, 9; the linear model) |
+//! | [`verification`] | observed orders, Richardson extrapolation and GCI |
+//! | [`numerics`] | Brent's root finder, Gauss–Legendre quadrature, a fast sine–cosine |
+//! | [`golden`] | independent reference values (mpmath roots, Blevins' table) |
+//! | [`scene`] | the Scene trait: one result of the paper from parameters to data, key numbers, verdict, plots |
+//! | [`scenes`] | the registry and one folder per result |
+//! | [`render`] | shared plotting and table helpers (no numerics) |
+//! | [`report`] | key numbers rounded to the digits the method resolves |
+//! | [`error`] | the crate's error type and the parameter checks |
+//! | [`prelude`] | what a program using the library needs in one `use` |
+//! | `book` | (feature `book`) the mdBook build with LaTeX → MathML |
+//!
+//! The `cantilever` command line (feature `cli`, on by default) lives in
+//! `src/bin/cantilever/`; a program that uses only the library can depend on the crate
+//! with `default-features = false` and compiles no CLI crates.
 
 pub mod asymptotics;
 pub mod continuum;
@@ -34,3 +67,21 @@ pub mod verification;
 
 #[cfg(feature = "book")]
 pub mod book;
+
+/// The names a program using the library needs, in one `use`.
+pub mod prelude {
+    pub use crate::error::{Error, ParameterError};
+    pub use crate::galerkin::{
+        first_frequency, first_modal_stiffness, Forcing, GalerkinModel, GalerkinParams, Region,
+        SpatialProfile,
+    };
+    pub use crate::orbit::{settle, OrbitKind};
+    pub use crate::problems::{self, Forced};
+    pub use crate::restitution;
+    pub use crate::rigid::{RigidEvent, RigidImpact, RigidRun};
+    pub use crate::sim::{
+        Clock, Dense, Energy, EventView, Events, Observer, SegmentView, Settings, Simulator,
+        Strobe, TipMax,
+    };
+    pub use nalgebra::{DMatrix, DVector};
+}

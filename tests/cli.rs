@@ -83,13 +83,32 @@ fn fig2_json_prints_the_table() {
 
 #[test]
 fn modes_command_compares_galerkin_and_continuum() {
-    let (code, out, _) = cantilever(&["modes", "--modes", "2", "--stop-stiffness", "0", "--json"]);
+    // Checked against values the command does not compute: the 50-digit mpmath roots of
+    // golden/roots.json. At k = 0 the Galerkin eigenvalues are the free ones, λ_i =
+    // (β_i⁻)⁴; at k = 100k₁ the continuum column is (β_i⁺)⁴ and, for N = 1, λ₁ = k₁ + k.
+    use impacting_cantilever::golden::GoldenRoots;
+    let g = GoldenRoots::load();
+    let free = GoldenRoots::table(&g.free);
+    let at_100 = GoldenRoots::table(&g.finite_k["100"]);
+    let (code, out, _) = cantilever(&["modes", "--modes", "3", "--stop-stiffness", "0", "--json"]);
     assert_eq!(code, 0);
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
-    // with k = 0 both are the free cantilever: identical to round-off
     for e in v["eigenvalues"].as_array().unwrap() {
-        assert!(e["rel_error"].as_f64().unwrap().abs() < 1e-14);
+        let i = e["i"].as_u64().unwrap() as usize;
+        let beta = free.iter().find(|(j, _)| *j == i).unwrap().1;
+        // roots to ~1e-15 relative: their fourth powers to ~4e-15
+        let lambda = e["lambda"].as_f64().unwrap();
+        assert!((lambda / beta.powi(4) - 1.0).abs() < 1e-14, "i={i}");
     }
+    let (code, out, _) =
+        cantilever(&["modes", "--modes", "1", "--stop-stiffness", "100", "--json"]);
+    assert_eq!(code, 0);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let e = &v["eigenvalues"][0];
+    let k1: f64 = g.k1.parse().unwrap();
+    assert!((e["lambda"].as_f64().unwrap() / (101.0 * k1) - 1.0).abs() < 1e-14);
+    let beta = at_100.iter().find(|(j, _)| *j == 1).unwrap().1;
+    assert!((e["exact"].as_f64().unwrap() / beta.powi(4) - 1.0).abs() < 1e-14);
 }
 
 fn simulate(extra: &[(&str, &str)]) -> (i32, String, String) {

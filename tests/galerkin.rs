@@ -90,14 +90,37 @@ fn state_matrix_has_the_block_form_of_eq_35() {
 }
 
 #[test]
-fn switching_function_and_preload_use_tip_value_two() {
-    let m = GalerkinModel::new(GalerkinParams::new(3, 10.0).with_gap(0.5)).unwrap();
-    let eta = DVector::from_vec(vec![0.1, 0.2, -0.05]);
-    assert!((m.switching_function(&eta) - (2.0 * 0.25 - 0.5)).abs() < 1e-15);
-    assert_eq!(m.region_of(&eta), Region::Contact);
-    // F⁺ − F⁻ = (k d₀/4) φ(1) = k d₀ / 2 per mode
-    assert_eq!(m.stop_preload(Region::Contact)[2], 2.5);
-    assert_eq!(m.stop_preload(Region::Free)[2], 0.0);
+fn the_stop_force_is_one_sided_and_continuous_across_the_surface() {
+    // The + and − right-hand sides of eq (35), A^±x + F^±, differ by the stop force
+    // −(k/4)φ(1)(φ(1)ᵀη − d₀) (eq 1 with the sign of erratum E1): zero on the surface
+    // φ(1)ᵀη = d₀, so the vector field is continuous there, and pushing the tip back
+    // (negative) when it penetrates.
+    let (k, gap) = (10.0, 0.5);
+    let m = GalerkinModel::new(GalerkinParams::new(3, k).with_gap(gap)).unwrap();
+    let rhs = |region: Region, x: &DVector<f64>| {
+        let mut f = m.state_matrix(region) * x;
+        let force = m.force(0.3, region);
+        for j in 0..3 {
+            f[3 + j] += force[j];
+        }
+        f
+    };
+    for penetration in [0.0, 0.01, 0.2] {
+        // η with φ(1)ᵀη = 2Ση = d₀ + penetration, and some velocity
+        let eta = [0.1, 0.2, (gap + penetration) / 2.0 - 0.3];
+        let x = DVector::from_vec(vec![eta[0], eta[1], eta[2], 0.4, -0.1, 0.7]);
+        assert!((m.switching_function(&x.rows(0, 3).into_owned()) - penetration).abs() < 1e-15);
+        let jump = rhs(Region::Contact, &x) - rhs(Region::Free, &x);
+        // round-off of the two right-hand sides: a few ε of their largest term
+        let scale = (m.state_matrix(Region::Contact).abs() * x.abs()).amax()
+            + m.force(0.3, Region::Contact).amax();
+        for j in 0..3 {
+            // the stop force on mode j: −(k/4)·φ_j(1)·penetration = −(k/2)·penetration
+            let err = (jump[3 + j] + k / 2.0 * penetration).abs();
+            assert!(err < 8.0 * f64::EPSILON * scale, "{penetration}: {err:e}");
+            assert_eq!(jump[j], 0.0, "displacement rows do not see the stop");
+        }
+    }
 }
 
 #[test]
@@ -126,7 +149,7 @@ fn corrected_eq37_forcing_gives_unit_tip_amplitude_at_resonance() {
 
 #[test]
 fn printed_eq37_amplitude_gives_one_over_four_zeta_squared() {
-    // Erratum 1: the printed amplitude does not give a unit tip amplitude.
+    // Erratum E2: the printed amplitude does not give a unit tip amplitude.
     for zeta1 in [0.01, 0.1] {
         let w1 = galerkin::first_frequency();
         let p = GalerkinParams::new(1, 0.0)
@@ -168,20 +191,35 @@ fn uniform_load_projection_reproduces_the_static_tip_deflection() {
     }
 }
 
+/// Mode 1's damping ratio read off the free-flight state matrix A⁻: its eigenvalue pair
+/// of smallest modulus is ω₁(−ζ ± i√(1 − ζ²)), so ζ = −Re λ/|λ|.
+fn mode_one_damping_ratio(m: &GalerkinModel) -> f64 {
+    let lambda = m.state_matrix(Region::Free).complex_eigenvalues();
+    let slowest = lambda
+        .iter()
+        .min_by(|a, b| a.norm().total_cmp(&b.norm()))
+        .unwrap();
+    -slowest.re / slowest.norm()
+}
+
 #[test]
 fn damping_ratio_reading_of_fig9_caption() {
-    // Erratum 2: γ = 2ζ₁/(β₁⁻)² gives mode 1 the damping ratio ζ₁ (C₁₁ = 2ζ₁ω₁); the
-    // Fig 4 caption's γ = 0.02(β₁⁻)² would give ζ₁ = 0.01·k₁ ≈ 0.124 instead of 0.01.
-    let w1 = galerkin::first_frequency();
-    let gamma = galerkin::material_damping_from_zeta1(0.01);
-    assert!((gamma * k1() / (2.0 * w1) - 0.01).abs() < 1e-16);
-    let printed_gamma = 0.02 * w1;
-    assert!((printed_gamma * k1() / (2.0 * w1) - 0.01 * k1()).abs() < 1e-12);
+    // Erratum E3: γ = 2ζ₁/(β₁⁻)² gives mode 1 the damping ratio ζ₁ (the Fig 9 caption's
+    // ζ₁ = γ(β₁⁻)²/2); the Fig 4 caption's γ = 0.02(β₁⁻)², read literally, gives
+    // ζ₁ = 0.01·k₁ ≈ 0.124 instead of 0.01. Both read off the eigenvalues of A⁻; a
+    // Hessenberg–QR eigenvalue of a well-separated 2 × 2 block is good to ~1e-15.
+    let with_zeta = GalerkinModel::new(GalerkinParams::new(4, 0.0).with_zeta1(0.01)).unwrap();
+    assert!((mode_one_damping_ratio(&with_zeta) - 0.01).abs() < 1e-13);
+    let mut literal = GalerkinParams::new(4, 0.0);
+    literal.material_damping = 0.02 * galerkin::first_frequency();
+    let literal = GalerkinModel::new(literal).unwrap();
+    let zeta = mode_one_damping_ratio(&literal);
+    assert!((zeta - 0.01 * k1()).abs() < 1e-12, "{zeta}");
 }
 
 #[test]
 fn sign_convention_of_phi() {
-    // Erratum 4: ψ_i(1) = 2(−1)^i for the printed ψ_i, so φ_i = (−1)^i ψ_i (not (−1)^{i+1}).
+    // Erratum E5: ψ_i(1) = 2(−1)^i for the printed ψ_i, so φ_i = (−1)^i ψ_i (not (−1)^{i+1}).
     for i in 1..=6 {
         let psi = continuum::ModeShape::printed(continuum::free_root(i).unwrap());
         let sign = if i % 2 == 0 { 1.0 } else { -1.0 };

@@ -144,9 +144,15 @@ fn figure_4_verdicts_and_their_evidence() {
         if p.modes == 3 {
             assert_eq!(p.kind, OrbitKind::Periodic { m: 1, n: 1 });
             assert_ne!(p.kind, p.paper);
-            // the near-grazing dwell that separates (1,1) from the paper's (1,3)
+            // the near-grazing dwell that separates (1,1) from the paper's (1,3): positive
+            // (one contact, not several) and, by the chapter's definition of near-grazing,
+            // shallower than a tenth of the peak penetration (d₀ = 0: the max tip)
             let depth = p.dwell_depth.unwrap();
-            assert!(depth > 0.0 && depth < 0.05, "dwell depth {depth}");
+            assert!(
+                depth > 0.0 && depth < 0.1 * p.max_tip,
+                "dwell depth {depth}, peak {}",
+                p.max_tip
+            );
         } else {
             assert_eq!(p.kind, p.paper, "N={}", p.modes);
         }
@@ -212,11 +218,21 @@ fn figure_5_claims_at_test_resolution() {
     use impacting_cantilever::scenes::fig5::{compute, Fig5Params};
     let d = compute(&Fig5Params::test(), &|| {}).unwrap();
     let c = &d.claims;
-    // "for small k each model predicts a stable (1,1) orbit with quantitative agreement"
+    // "for small k each model predicts a stable (1,1) orbit with quantitative agreement".
+    // The truncations differ only through how well they resolve the contact: at the
+    // smallest k (= k₁) the coarsest, N = 1, misplaces the lowest contact eigenvalue by
+    // its Figure 2 relative error; the impact velocities may differ by no more than that.
     assert!(c.all_one_one_at_smallest_k);
+    let f2 = fig2::compute(&Default::default()).unwrap();
+    let n1_error = f2
+        .table
+        .iter()
+        .find(|r| r.modes == 1 && r.k_over_k1 == d.k_over_k1[0] && r.i == 1)
+        .unwrap()
+        .rel_error;
     assert!(
-        c.velocity_spread_at_smallest_k < 0.02,
-        "{}",
+        c.velocity_spread_at_smallest_k < n1_error,
+        "{} vs {n1_error}",
         c.velocity_spread_at_smallest_k
     );
     // the N = 3 orbit at the grid point k = 100 k₁ is (1,1) and at 215 k₁ it is (1,3)
@@ -252,18 +268,34 @@ fn figure_3abc_one_contact_against_the_impact_laws() {
         // the exact simulator against the closed-form 1-DOF passage: round-off
         assert!((sim - exact).abs() < 1e-12, "{sim} vs {exact}");
     }
+    let k1 = impacting_cantilever::galerkin::first_modal_stiffness();
     for s in &d.series {
-        // the gap to [R]_N(r_e) closes like ε² (the first-order theory's remainder); N = 10
-        // is pre-asymptotic over part of the range (k₁₀ ≈ 8e5 ~ ε⁻²): 1.83
-        let want = if s.modes == 10 { 1.8 } else { 2.0 };
+        // the gap to [R]_N(r_e) closes like ε², the first-order theory's remainder. The
+        // fit runs over ε ∈ [1e-4, 1e-3], where the next term of the expansion is at most
+        // 4% of the remainder (N = 1: απk₁ε/2 against α²π²/2 at ε = 1e-3), so the slope is
+        // 2 within 0.05
         assert!(
-            (s.observed_order - want).abs() < 0.1,
+            (s.observed_order - 2.0).abs() < 0.05,
             "N={}: {}",
             s.modes,
             s.observed_order
         );
-        // the contact lasts πκ^{−1/2}ε (eq 18) to O(ε): within 1e-3 at ε = 1e-4
-        assert!((s.passage_ratio[0] - 1.0).abs() < 1e-3);
+        // the contact lasts π/√λ_N, λ_N the top eigenvalue of K⁺ = diag(k_j) + k𝟙𝟙ᵀ:
+        // λ_N = kN + mean(k_j) + O(1/k), so the ratio to eq (18)'s π/√(kN) is
+        // 1 − mean(k_j)/(2kN) + O(α²/(kN)); twice that bounds it at ε = 1e-4
+        let k = d.params.eps[0].powi(-2);
+        let n = s.modes as f64;
+        let mean_kj: f64 = (1..=s.modes)
+            .map(|j| impacting_cantilever::continuum::modal_stiffness(j).unwrap())
+            .sum::<f64>()
+            / n;
+        let bound = (mean_kj + d.params.alpha.powi(2) + k1) / (k * n);
+        assert!(
+            (s.passage_ratio[0] - 1.0).abs() < bound,
+            "N={}: passage ratio {} (bound {bound:e})",
+            s.modes,
+            s.passage_ratio[0]
+        );
     }
     // "the effective coefficient of restitution of the first mode tends to zero" (N = 2)
     let n2 = d.series.iter().find(|s| s.modes == 2).unwrap();

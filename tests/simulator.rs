@@ -232,11 +232,23 @@ fn cross_verification_with_the_reference_integrator_on_figure_4() {
             worst = worst.max((a.time - b.time).abs());
         }
         assert!(worst < 1e-8, "N={n}: worst event-time difference {worst:e}");
-        let scale = x.amax();
-        assert!(
-            (&r.state - &x).amax() < 1e-7 * scale.max(1e-3),
-            "N={n}: end state"
-        );
+        // End states: a time shift δt of a trajectory moves the state by ≈ |ẋ|δt; the
+        // event times agree to `worst`, and between events both are accurate flows of a
+        // damped system, so the states agree to a few |ẋ|·max(worst, DP5's step error).
+        // |ẋ| from the model's right-hand side at the end (in the region of the last event).
+        let region = if trace.events.last().is_some_and(|e| e.entering) {
+            Region::Contact
+        } else {
+            Region::Free
+        };
+        let mut xdot = m.state_matrix(region) * &x;
+        let force = m.force(t_end, region);
+        for j in 0..n {
+            xdot[n + j] += force[j];
+        }
+        let diff = (&r.state - &x).amax();
+        let bound = 4.0 * xdot.amax() * worst.max(1e-13 * t_end);
+        assert!(diff < bound, "N={n}: end state {diff:e} vs {bound:e}");
     }
 }
 

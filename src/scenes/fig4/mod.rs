@@ -266,6 +266,14 @@ fn panel(p: &Fig4Params, modes: usize, paper: OrbitKind) -> Result<Fig4Panel, Er
 
 /// Runs the scene (one task per N, in parallel).
 pub fn compute(p: &Fig4Params) -> Result<Fig4Data, Error> {
+    if p.cases.is_empty() || p.window < 2 {
+        return Err(crate::error::ParameterError::new(
+            "Figure 4 cases and window",
+            format!("{} cases, {} periods", p.cases.len(), p.window),
+            "at least one case and a window of at least 2 periods",
+        )
+        .into());
+    }
     use rayon::prelude::*;
     let panels = p
         .cases

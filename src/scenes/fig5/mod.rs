@@ -13,7 +13,7 @@ pub mod render;
 
 use crate::report::KeyNumbers;
 use crate::scene::{Outcome, Progress, Rendered, Resolution, Scene, Verdict};
-use crate::error::Error;
+use crate::error::{self, Error, ParameterError};
 use crate::orbit::{self, OrbitKind, SplitMix64};
 use crate::problems::{self, Forced};
 use crate::sim::Simulator;
@@ -70,6 +70,34 @@ impl Fig5Params {
             recorded: 40,
             ..Self::book()
         }
+    }
+
+    /// Every count at least what the diagram needs, the k range positive and increasing.
+    pub fn validate(&self) -> Result<(), ParameterError> {
+        if self.modes.is_empty() {
+            return Err(ParameterError::new("truncations N", "none", "at least one"));
+        }
+        for &n in &self.modes {
+            error::count_in_range("modes N", n, crate::galerkin::MAX_MODES)?;
+        }
+        error::count_in_range("initial conditions per k", self.starts, 1000)?;
+        error::count_in_range("k values", self.points, 100_000)?;
+        if self.recorded < 2 {
+            return Err(ParameterError::new(
+                "recorded periods",
+                self.recorded,
+                "at least 2 (periodicity is tested between strobe samples)",
+            ));
+        }
+        let (lo, hi) = self.k_over_k1_range;
+        if !(lo.is_finite() && hi.is_finite() && lo > 0.0 && hi > lo) {
+            return Err(ParameterError::new(
+                "k/k₁ range",
+                format!("{lo}..{hi}"),
+                "0 < lower < upper, finite",
+            ));
+        }
+        Ok(())
     }
 
     /// The k/k₁ grid.
@@ -202,6 +230,7 @@ fn point(
 
 /// Runs the scene; `progress` is called once per finished (N, k) point.
 pub fn compute(p: &Fig5Params, progress: &(dyn Fn() + Sync)) -> Result<Fig5Data, Error> {
+    p.validate()?;
     let grid = p.grid();
     let tasks: Vec<(usize, usize)> = p
         .modes

@@ -74,8 +74,7 @@ pub fn plot(d: &Fig5Data) -> Result<String, RenderError> {
 /// The markdown tables: orbit-set transitions per N, and the measured claims.
 pub fn table(d: &Fig5Data) -> String {
     let mut rows = Vec::new();
-    for (n, ts) in &d.transitions {
-        let g = d.diagrams.iter().find(|g| g.modes == *n).expect("diagram");
+    for (g, (n, ts)) in d.diagrams.iter().zip(&d.transitions) {
         let first = g
             .kinds(0)
             .iter()
