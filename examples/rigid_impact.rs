@@ -18,18 +18,7 @@ fn main() -> Result<(), Error> {
     let t_end = periods * sim.period();
     let law = restitution::impulse_response(3, 0.8)?;
     let run = RigidImpact::new(sim, law)?.run(&DVector::zeros(6), t_end);
-    let impacts: Vec<_> = run
-        .events
-        .iter()
-        .filter_map(|e| match e {
-            RigidEvent::Impact {
-                time,
-                incoming,
-                outgoing,
-            } => Some((*time, *incoming, *outgoing)),
-            _ => None,
-        })
-        .collect();
+    let impacts = run.impacts();
     for (t, vin, vout) in impacts.iter().rev().take(4).rev() {
         println!("t = {t:10.6}: tip velocity {vin:+.5} → {vout:+.5}");
     }

@@ -96,6 +96,23 @@ pub struct RigidRun {
     pub stats: Stats,
 }
 
+impl RigidRun {
+    /// The impacts in order, as (t, incoming tip velocity, outgoing tip velocity).
+    pub fn impacts(&self) -> Vec<(f64, f64, f64)> {
+        self.events
+            .iter()
+            .filter_map(|e| match e {
+                RigidEvent::Impact {
+                    time,
+                    incoming,
+                    outgoing,
+                } => Some((*time, *incoming, *outgoing)),
+                _ => None,
+            })
+            .collect()
+    }
+}
+
 /// The rigid-impact model: the free flow of `sim` and the modal law `law` (\[R\]).
 pub struct RigidImpact {
     /// The simulator whose free flow is used (its contact flow is not).

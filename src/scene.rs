@@ -95,6 +95,17 @@ pub struct Rendered {
     pub extra_tables: Vec<(&'static str, String)>,
 }
 
+impl Rendered {
+    /// One plot and one table.
+    pub fn new(svg: String, table: String) -> Self {
+        Self {
+            svg,
+            table,
+            extra_tables: Vec::new(),
+        }
+    }
+}
+
 /// One result of the paper.
 pub trait Scene: Sync {
     /// The name on the command line and of its output directory.

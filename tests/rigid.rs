@@ -15,17 +15,7 @@ fn one_mode(gap: f64, r: f64) -> RigidImpact {
 }
 
 fn impacts(run: &impacting_cantilever::rigid::RigidRun) -> Vec<(f64, f64, f64)> {
-    run.events
-        .iter()
-        .filter_map(|e| match e {
-            RigidEvent::Impact {
-                time,
-                incoming,
-                outgoing,
-            } => Some((*time, *incoming, *outgoing)),
-            _ => None,
-        })
-        .collect()
+    run.impacts()
 }
 
 #[test]

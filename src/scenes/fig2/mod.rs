@@ -229,10 +229,6 @@ impl Scene for Fig2 {
     }
 
     fn render(d: &Fig2Data) -> Result<Rendered, crate::render::RenderError> {
-        Ok(Rendered {
-            svg: render::plot(d)?,
-            table: render::table(d),
-            extra_tables: Vec::new(),
-        })
+        Ok(Rendered::new(render::plot(d)?, render::table(d)))
     }
 }

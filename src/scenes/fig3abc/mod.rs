@@ -252,10 +252,6 @@ impl Scene for Fig3abc {
     }
 
     fn render(d: &Fig3abcData) -> Result<Rendered, crate::render::RenderError> {
-        Ok(Rendered {
-            svg: render::plot(d)?,
-            table: render::table(d),
-            extra_tables: Vec::new(),
-        })
+        Ok(Rendered::new(render::plot(d)?, render::table(d)))
     }
 }

@@ -390,10 +390,6 @@ impl Scene for Fig4 {
     }
 
     fn render(d: &Fig4Data) -> Result<Rendered, crate::render::RenderError> {
-        Ok(Rendered {
-            svg: render::plot(d)?,
-            table: render::table(d),
-            extra_tables: Vec::new(),
-        })
+        Ok(Rendered::new(render::plot(d)?, render::table(d)))
     }
 }

@@ -467,10 +467,6 @@ impl Scene for Fig5 {
     }
 
     fn render(d: &Fig5Data) -> Result<Rendered, crate::render::RenderError> {
-        Ok(Rendered {
-            svg: render::plot(d)?,
-            table: render::table(d),
-            extra_tables: Vec::new(),
-        })
+        Ok(Rendered::new(render::plot(d)?, render::table(d)))
     }
 }

@@ -265,10 +265,6 @@ impl Scene for Spectrum {
     }
 
     fn render(d: &SpectrumData) -> Result<Rendered, crate::render::RenderError> {
-        Ok(Rendered {
-            svg: render::plot(d)?,
-            table: render::table(d),
-            extra_tables: Vec::new(),
-        })
+        Ok(Rendered::new(render::plot(d)?, render::table(d)))
     }
 }
