@@ -21,7 +21,7 @@ pub fn plot(d: &WorkPrecisionData) -> Result<String, RenderError> {
         });
         let titles = ["max event-time error", "relative end-state error"];
         for (i, panel) in panels.iter().enumerate() {
-            let value = |p: &crate::scenes::work_precision::WorkPoint| {
+            let value = |p: &super::WorkPoint| {
                 let e = if i == 0 { p.event_error } else { p.state_error };
                 e.max(FLOOR)
             };
