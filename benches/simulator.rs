@@ -24,14 +24,16 @@ fn simulate(c: &mut Criterion) {
     for (label, model) in [("fig4_N10", fig4()), ("fig6b_N20", fig6b())] {
         let x0 = DVector::zeros(2 * model.modes());
         let sim = Simulator::new(model).unwrap();
-        g.bench_function(label, |b| b.iter(|| sim.run(black_box(&x0), 1000, &mut ())));
+        g.bench_function(label, |b| {
+            b.iter(|| sim.run(black_box(&x0), 1000, &mut ()).unwrap())
+        });
     }
     g.finish();
     let mut g = c.benchmark_group("exact_200_periods");
     let sim = Simulator::new(fig4()).unwrap();
     let x0 = DVector::zeros(20);
     g.bench_function("fig4_N10", |b| {
-        b.iter(|| sim.run(black_box(&x0), 200, &mut ()))
+        b.iter(|| sim.run(black_box(&x0), 200, &mut ()).unwrap())
     });
     g.finish();
     let mut g = c.benchmark_group("setup");

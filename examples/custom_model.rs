@@ -17,7 +17,7 @@ fn main() -> Result<(), Error> {
     let x0 = model.modal_state(&|s| 0.1 * s * s * (3.0 - s), &|_| 0.0)?;
     let sim = Simulator::new(model)?;
     let (mut events, mut energy) = (Events::default(), Energy::default());
-    sim.run(&x0, 40, &mut (&mut events, &mut energy));
+    sim.run(&x0, 40, &mut (&mut events, &mut energy))?;
     for e in events.events.iter().take(6) {
         println!(
             "t = {:.6} entering {} v = {:+.3e}",

@@ -27,6 +27,10 @@ pub enum Error {
     /// Legal input that this method does not support, with the reason.
     #[error("unsupported: {0}")]
     Unsupported(String),
+    /// A run broke an invariant of the exact solution (an entry into contact moving away
+    /// from the stop, say): its results would be wrong, so none are given.
+    #[error("invariant violated: {0}")]
+    Invariant(String),
 }
 
 /// A parameter outside its allowed range.

@@ -11,7 +11,7 @@
 //! // the paper's Figure 4 model with N = 3 modes, from rest, 100 forcing periods
 //! let sim = Simulator::new(problems::figure4(3).model()?)?;
 //! let (mut events, mut energy) = (Events::default(), Energy::default());
-//! sim.run(&DVector::zeros(6), 100, &mut (&mut events, &mut energy));
+//! sim.run(&DVector::zeros(6), 100, &mut (&mut events, &mut energy))?;
 //! assert!(!events.events.is_empty() && energy.budget.relative_imbalance() < 1e-12);
 //! # Ok(())
 //! # }

@@ -11,6 +11,7 @@
 //! When no m ≤ 32 passes, the orbit is reported as not periodic with its best residual —
 //! quasi-periodic, chaotic, or not yet settled — rather than forced into a label.
 
+use crate::error::Error;
 use crate::sim::{Dense, Event, Events, Sample, Simulator, Strobe};
 use nalgebra::DVector;
 use serde::Serialize;
@@ -105,8 +106,8 @@ pub fn settle(
     transient: u64,
     window: u64,
     dense_per_period: usize,
-) -> Orbit {
-    let x = sim.run(x0, transient, &mut ()).state;
+) -> Result<Orbit, Error> {
+    let x = sim.run(x0, transient, &mut ())?.state;
     let start = sim.clock_at_cycle(transient as i64);
     let (mut events, mut strobe, mut dense) = (
         Events::default(),
@@ -119,7 +120,7 @@ pub fn settle(
             start,
             window,
             &mut (&mut events, &mut strobe, &mut dense),
-        )
+        )?
         .state;
     let (m, residual) = detect_period(&strobe.states(), PERIODIC_TOLERANCE, MAX_PERIOD);
     let end = start.cycles + window as i64;
@@ -135,7 +136,7 @@ pub fn settle(
         let n = orbit.entries(end - m as i64, end).count() as u64;
         orbit.kind = OrbitKind::Periodic { m, n };
     }
-    orbit
+    Ok(orbit)
 }
 
 /// A deterministic pseudo-random stream (SplitMix64, Steele, Lea & Flood 2014): seeded per
@@ -193,15 +194,15 @@ pub fn random_orbits(
     seed: u64,
     transient: u64,
     window: u64,
-) -> Vec<(OrbitKind, usize)> {
+) -> Result<Vec<(OrbitKind, usize)>, Error> {
     let n = sim.model().modes();
     let (amp, _) = sim.model().free_tip_amplitude();
     let mut counts: std::collections::BTreeMap<OrbitKind, usize> = Default::default();
     for i in 0..starts {
         let mut rng = SplitMix64::for_point(seed, n as u64, 0, i as u64);
         let x0 = random_state(&mut rng, n, 4.0 * amp, sim.omega());
-        let o = settle(sim, &x0, transient, window, 0);
+        let o = settle(sim, &x0, transient, window, 0)?;
         *counts.entry(o.kind).or_default() += 1;
     }
-    counts.into_iter().collect()
+    Ok(counts.into_iter().collect())
 }

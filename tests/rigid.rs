@@ -98,7 +98,7 @@ fn compliant_single_mode_converges_to_the_rigid_impact_oscillator() {
         .iter()
         .map(|&k| {
             let s = Simulator::new(case(k).model().unwrap()).unwrap();
-            let o = orbit::settle(&s, &DVector::zeros(2), 1000, 40, 0);
+            let o = orbit::settle(&s, &DVector::zeros(2), 1000, 40, 0).unwrap();
             assert_eq!(o.kind, OrbitKind::Periodic { m: 1, n: 1 }, "k = {k:e} k₁");
             let v = o
                 .events

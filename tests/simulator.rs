@@ -75,7 +75,7 @@ fn exact_simulator_matches_the_closed_form_forced_oscillator() {
     let m = out_of_reach(1, 0.05, 1.3);
     let sim = Simulator::new(m.clone()).unwrap();
     let x0 = DVector::from_vec(vec![0.2, -0.4]);
-    let x = sim.run(&x0, 7, &mut ()).state;
+    let x = sim.run(&x0, 7, &mut ()).unwrap().state;
     let t = 7.0 * sim.period();
     let (xe, ve) = oscillator(
         k1(),
@@ -99,7 +99,7 @@ fn contact_passage_times_match_the_closed_form() {
     let sim = Simulator::new(m.clone()).unwrap();
     let x0 = DVector::from_vec(vec![0.0, 1.0]);
     let mut trace = Events::default();
-    sim.run(&x0, 3, &mut trace);
+    sim.run(&x0, 3, &mut trace).unwrap();
     let (tp, tm) = (PI / (k1() + k).sqrt(), PI / k1().sqrt());
     let mut expected = 0.0;
     assert!(trace.events.len() >= 4);
@@ -134,7 +134,7 @@ fn energy_balance_over_1000_periods() {
     // the issue: imbalance ≤ 1e-9 for N = 10 at k = 100 k₁ and for N = 40 at k = 1e5 k₁
     let sim = Simulator::new(fig4(10)).unwrap();
     let mut t = Energy::default();
-    sim.run(&DVector::zeros(20), 1000, &mut t);
+    sim.run(&DVector::zeros(20), 1000, &mut t).unwrap();
     let e = t.budget;
     assert!(e.dissipated > 0.0 && e.work > 0.0);
     assert!(
@@ -151,7 +151,7 @@ fn energy_balance_over_1000_periods() {
     .unwrap();
     let sim = Simulator::new(stiff).unwrap();
     let mut t = Energy::default();
-    sim.run(&DVector::zeros(80), 1000, &mut t);
+    sim.run(&DVector::zeros(80), 1000, &mut t).unwrap();
     let e = t.budget;
     assert!(
         e.relative_imbalance() < 1e-9,
@@ -183,6 +183,7 @@ fn extreme_cases_balance_energy_to_the_eigenvector_conditioning() {
         let (mut t, mut energy) = (Events::default(), Energy::default());
         let x = sim
             .run(&DVector::zeros(2 * n), periods, &mut (&mut t, &mut energy))
+            .unwrap()
             .state;
         let case = format!("N={n} k={k_over_k1:e}k1 zeta1={zeta1} d0={gap}");
         assert!(x.iter().all(|v| v.is_finite()), "{case}");
@@ -214,7 +215,7 @@ fn cross_verification_with_the_reference_integrator_on_figure_4() {
         let sim = Simulator::new(m.clone()).unwrap();
         let x0 = DVector::zeros(2 * n);
         let mut trace = Events::default();
-        let x = sim.run(&x0, 50, &mut trace).state;
+        let x = sim.run(&x0, 50, &mut trace).unwrap().state;
         let t_end = 50.0 * sim.period();
         let r = reference::integrate(
             &m,
@@ -272,7 +273,7 @@ fn near_grazing_contacts_are_found_and_a_naive_sampler_misses_them() {
         let x0 = DVector::from_vec(vec![0.0, a * w1()]);
         let (mut trace, mut dense) = (Events::default(), Dense::new(1000));
         // unforced: one "period" is one time unit; ω₁ ≈ 3.5, so 3 units hold ≥ 1 crest
-        sim.run(&x0, 3, &mut (&mut trace, &mut dense));
+        sim.run(&x0, 3, &mut (&mut trace, &mut dense)).unwrap();
         // crests at t = (π/2 + 2πj)/ω₁ < 3
         let crests = ((3.0 * w1() - PI / 2.0) / (2.0 * PI)).floor() as usize + 1;
         assert_eq!(
@@ -303,7 +304,7 @@ fn double_crossings_inside_one_fast_period_are_found() {
     x0[0] = 0.4994;
     x0[4] = -0.002;
     let (mut trace, mut dense) = (Events::default(), Dense::new(20));
-    sim.run(&x0, 1, &mut (&mut trace, &mut dense));
+    sim.run(&x0, 1, &mut (&mut trace, &mut dense)).unwrap();
     assert!(
         trace.events.len() >= 2,
         "found {} events",
@@ -345,7 +346,7 @@ fn certified_maximum_of_the_linear_response_is_its_amplitude() {
         let free = sim.flow(Region::Free);
         let x0 = free.particular(0.0);
         let mut t = TipMax::default();
-        sim.run(&x0, 3, &mut t);
+        sim.run(&x0, 3, &mut t).unwrap();
         let m = t.maximum.unwrap();
         let amplitude = free.tip_forced().norm();
         // the certificate's slack (64ε of the signal scale) plus round-off of d itself
@@ -377,14 +378,14 @@ fn certified_maximum_bounds_a_fine_sampling_on_impacting_orbits() {
         )
         .unwrap();
         let sim = Simulator::new(model).unwrap();
-        let x = sim.run(&DVector::zeros(2 * n), 100, &mut ()).state;
+        let x = sim.run(&DVector::zeros(2 * n), 100, &mut ()).unwrap().state;
         let start = sim.clock_at_cycle(100);
         let mut t = TipMax::default();
-        sim.run_from(&x, start, 4, &mut t);
+        sim.run_from(&x, start, 4, &mut t).unwrap();
         let m = t.maximum.unwrap();
         let per_period = 20_000;
         let mut dense = Dense::new(per_period);
-        sim.run_from(&x, start, 4, &mut dense);
+        sim.run_from(&x, start, 4, &mut dense).unwrap();
         let d: Vec<f64> = dense.samples.iter().map(|p| p.1).collect();
         let best = d.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
         let dt = sim.period() / per_period as f64;
@@ -476,7 +477,7 @@ fn stiff_cases_agree_with_an_exponential_grid_reference() {
         let sim = Simulator::new(model.clone()).unwrap();
         let x0 = DVector::zeros(40);
         let mut trace = Events::default();
-        sim.run(&x0, periods as u64, &mut trace);
+        sim.run(&x0, periods as u64, &mut trace).unwrap();
         let reference = expm_grid_events(&model, &x0, periods * sim.period(), dt);
         let ours: Vec<(f64, bool)> = trace.events.iter().map(|e| (e.time, e.entering)).collect();
         assert_eq!(ours.len(), reference.len(), "k={k_over_k1:e}k1");
@@ -498,10 +499,12 @@ fn observers_record_only_what_they_are_for() {
     // events do not
     let sim = Simulator::new(fig4(3)).unwrap();
     let mut events = Events::default();
-    let plain = sim.run(&DVector::zeros(6), 20, &mut events);
+    let plain = sim.run(&DVector::zeros(6), 20, &mut events).unwrap();
     assert!(!events.events.is_empty() && events.events.iter().all(|e| e.state.is_none()));
     let (mut with_states, mut strobe) = (Events::with_states(), Strobe::default());
-    let strobed = sim.run(&DVector::zeros(6), 20, &mut (&mut with_states, &mut strobe));
+    let strobed = sim
+        .run(&DVector::zeros(6), 20, &mut (&mut with_states, &mut strobe))
+        .unwrap();
     assert!(with_states.events.iter().all(|e| e.state.is_some()));
     // one sample at the start and one per period
     assert_eq!(strobe.samples.len(), 21);
@@ -518,7 +521,7 @@ fn forcing_phase_stays_exact_over_long_runs() {
     // and the state at ωt = 0 mod 2π must be the particular solution x_p(0) to round-off.
     let m = out_of_reach(3, 0.01, 2.0);
     let sim = Simulator::new(m).unwrap();
-    let x = sim.run(&DVector::zeros(6), 10_000, &mut ()).state;
+    let x = sim.run(&DVector::zeros(6), 10_000, &mut ()).unwrap().state;
     let xp = sim.flow(Region::Free).particular(0.0);
     let err = (&x - &xp).amax() / xp.amax();
     assert!(err < 1e-12, "relative error {err:e}");
@@ -528,11 +531,11 @@ fn forcing_phase_stays_exact_over_long_runs() {
 fn chained_runs_equal_one_long_run() {
     let sim = Simulator::new(fig4(3)).unwrap();
     let x0 = DVector::zeros(6);
-    let long = sim.run(&x0, 40, &mut ()).state;
+    let long = sim.run(&x0, 40, &mut ()).unwrap().state;
     let mut x = x0.clone();
     let mut clock = sim.clock_at_cycle(0);
     for _ in 0..40 {
-        let next = sim.run_from(&x, clock, 1, &mut ());
+        let next = sim.run_from(&x, clock, 1, &mut ()).unwrap();
         x = next.state;
         clock = next.clock;
     }
@@ -546,7 +549,7 @@ fn chained_runs_equal_one_long_run() {
             sim.period(),
             j as f64 * 40.0 * sim.period() / 57.0,
         );
-        let next = sim.run_until(&x, clock, until, &mut ());
+        let next = sim.run_until(&x, clock, until, &mut ()).unwrap();
         x = next.state;
         clock = next.clock;
     }
@@ -571,7 +574,7 @@ fn a_start_at_rest_on_the_stop_begins_in_contact() {
     );
     let sim = Simulator::new(m).unwrap();
     let mut t = Events::default();
-    sim.run(&DVector::zeros(6), 1, &mut t);
+    sim.run(&DVector::zeros(6), 1, &mut t).unwrap();
     assert!(
         !t.events[0].entering && t.events[0].time > 0.01,
         "first event: leaving contact"

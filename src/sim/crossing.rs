@@ -19,10 +19,11 @@ use super::Stats;
 /// The first s in (from, s_max] with g(s) = 0, certified (see the module doc).
 ///
 /// A segment that starts on the surface (after a switch, or at rest on it) has
-/// |g| within round-off there; the starting rule chose the region from the velocity or
-/// acceleration, so values inside g's round-off band near the start are not crossings.
-/// A crossing is accepted once g has been certainly negative (below minus its
-/// round-off floor), or when g is certainly positive.
+/// |g| within its uncertainty there ([`Local::noise`]: round-off plus the error of the
+/// modal representation); the starting rule chose the region from the velocity or
+/// acceleration, so values inside that band near the start are not crossings. A crossing
+/// is accepted once g has been certainly negative (below minus its uncertainty), or when
+/// g is certainly positive.
 pub fn first_crossing<S: Signal + ?Sized>(
     sig: &S,
     target: Target,
@@ -32,7 +33,7 @@ pub fn first_crossing<S: Signal + ?Sized>(
     rel_tol: f64,
     stats: &mut Stats,
 ) -> Option<f64> {
-    let noise = |p: &Local| 8.0 * f64::EPSILON * p.scale;
+    let noise = |p: &Local| p.noise();
     let mut s = from;
     let mut p = sig.local(from, target);
     stats.evaluations += 1;
@@ -143,6 +144,8 @@ fn polish<S: Signal + ?Sized>(
         if p.g.abs() <= 8.0 * f64::EPSILON * p.scale {
             return s;
         }
+        // (the representation floor is a fixed offset of g, not noise: the polish goes on
+        // to the root of the represented g)
         if p.g < 0.0 {
             lo = s;
         } else {

@@ -2,7 +2,7 @@
 //! of stored energy (kinetic + modal strain + stop), each segment's integrals in closed
 //! form. It needs no reference solution and catches most integrator and event bugs.
 
-use crate::flow::{decay, RegionFlow};
+use crate::flow::{decay, Block2, RegionFlow, TermKind};
 use crate::galerkin::GalerkinModel;
 use crate::numerics::polar;
 use nalgebra::{DMatrix, DVector};
@@ -61,8 +61,9 @@ pub fn stored_energy(model: &GalerkinModel, x: &DVector<f64>) -> f64 {
 
 /// One region's tables for the exact energy integrals. Inside a segment the velocity is
 /// η̇(s) = Σ_m c_m p_m e^{μ_m s} over the homogeneous exponentials (a pair as λ_k and its
-/// conjugate) and, with forcing, the two forced ones ±iω; only the c_m depend on the
-/// segment, so everything quadratic in p_m is computed once per region.
+/// conjugate) and, with forcing, the two forced ones ±iω — plus, for each nearly defective
+/// pair (a block), P e^{Bs} y. Only the c_m and y depend on the segment, so everything
+/// quadratic in p_m and P is computed once per region.
 #[derive(Debug, Clone)]
 pub struct EnergyTables {
     /// μ_m.
@@ -71,19 +72,42 @@ pub struct EnergyTables {
     gram: DMatrix<Complex64>,
     /// fᵀp_m.
     forcing: Vec<Complex64>,
+    /// The blocks' tables.
+    blocks: Vec<BlockTables>,
+}
+
+/// A block's tables: B, its slot, and its Gram products with the exponentials and with the
+/// blocks after it.
+#[derive(Debug, Clone)]
+struct BlockTables {
+    block: Block2,
+    slot: usize,
+    /// P_aᵀCp_m for every exponential m.
+    with_exponentials: Vec<[Complex64; 2]>,
+    /// P_aᵀCP_b for this block and every later one.
+    with_blocks: Vec<[[f64; 2]; 2]>,
+    /// fᵀP_a.
+    forcing: [f64; 2],
 }
 
 impl EnergyTables {
     /// The tables of `flow`, a region flow of `model`.
     pub fn new(flow: &RegionFlow, model: &GalerkinModel) -> Self {
         let n = flow.modes();
+        let basis = flow.eigenvectors();
         let velocity =
             |col: &dyn Fn(usize) -> Complex64| -> Vec<Complex64> { (0..n).map(col).collect() };
         let mut p: Vec<Vec<Complex64>> = Vec::new();
         let mut exponents = Vec::new();
+        let mut block_parts: Vec<(Block2, usize, [Vec<f64>; 2])> = Vec::new();
         for t in flow.terms() {
-            let v = velocity(&|i| flow.eigenvectors()[(n + i, t.index)]);
-            if t.pair {
+            if let TermKind::Block { block, columns, .. } = t.kind {
+                let part = columns.map(|c| (0..n).map(|i| basis[(n + i, c)].re).collect());
+                block_parts.push((block, t.slot, part));
+                continue;
+            }
+            let v = velocity(&|i| basis[(n + i, t.index)]);
+            if t.is_pair() {
                 p.push(v.iter().map(|z| z.conj()).collect());
                 exponents.push(t.lambda.conj());
             }
@@ -106,10 +130,36 @@ impl EnergyTables {
             .iter()
             .map(|pm| (0..n).map(|i| pm[i] * f[i]).sum())
             .collect();
+        let blocks = (0..block_parts.len())
+            .map(|a| {
+                let (block, slot, pa) = &block_parts[a];
+                let with_exponentials = p
+                    .iter()
+                    .map(|pm| [0, 1].map(|r| (0..n).map(|i| pa[r][i] * c[i] * pm[i]).sum()))
+                    .collect();
+                let with_blocks = block_parts[a..]
+                    .iter()
+                    .map(|(_, _, pb)| {
+                        [0, 1].map(|r| {
+                            [0, 1].map(|q| (0..n).map(|i| pa[r][i] * c[i] * pb[q][i]).sum())
+                        })
+                    })
+                    .collect();
+                let forcing = [0, 1].map(|r| (0..n).map(|i| pa[r][i] * f[i]).sum());
+                BlockTables {
+                    block: *block,
+                    slot: *slot,
+                    with_exponentials,
+                    with_blocks,
+                    forcing,
+                }
+            })
+            .collect();
         Self {
             exponents,
             gram,
             forcing,
+            blocks,
         }
     }
 }
@@ -132,11 +182,49 @@ fn exp_integral(mu: Complex64, s: f64, growth: Complex64) -> Complex64 {
     }
 }
 
+/// ∫₀^S e^{Ks} ds · v for a small matrix K, given w = e^{KS}v: by its power series
+/// Σ_j K^j S^{j+1}/(j+1)! v when ‖K‖S < 1/2 (no cancellation), else by solving
+/// K·X = w − v (K is then well away from singular: a block's eigenvalues have Re < 0,
+/// and the sums used here stay away from zero).
+fn matrix_integral(
+    k: &DMatrix<Complex64>,
+    s: f64,
+    v: &DVector<Complex64>,
+    w: &DVector<Complex64>,
+) -> DVector<Complex64> {
+    if k.norm() * s < 0.5 {
+        let mut term = v * Complex64::new(s, 0.0);
+        let mut sum = term.clone();
+        for j in 1..40 {
+            term = k * term * Complex64::new(s / (j + 1) as f64, 0.0);
+            sum += &term;
+            if term.norm() <= 1e-18 * sum.norm() {
+                break;
+            }
+        }
+        sum
+    } else {
+        k.clone()
+            .lu()
+            .solve(&(w - v))
+            .unwrap_or_else(|| DVector::from_element(v.len(), Complex64::new(f64::NAN, 0.0)))
+    }
+}
+
+fn complex2(m: [[f64; 2]; 2], transpose: bool) -> DMatrix<Complex64> {
+    DMatrix::from_fn(2, 2, |i, j| {
+        let x = if transpose { m[j][i] } else { m[i][j] };
+        Complex64::new(x, 0.0)
+    })
+}
+
 /// Exact forcing work and dissipation over [0, S] of a segment of `flow` starting at
 /// modal coordinates y and forcing phase θ₀: with η̇(s) = Σ_m c_m p_m e^{μ_m s},
 /// ∫ η̇ᵀCη̇ = Σ_mn c_m c_n G_mn ∫e^{(μ_m+μ_n)s} and ∫ fᵀη̇ cos ωt = Σ_m c_m fᵀp_m ∫ e^{μ_m s}
 /// cos(θ₀ + ωs), all in closed form; e^{(μ_m+μ_n)S} is the product of the two factors
-/// e^{μS}, so a segment costs O(N²) products and O(N) exponentials.
+/// e^{μS}, so a segment costs O(N²) products and O(N) exponentials. A block's terms are
+/// integrals of e^{Bᵀs}Ge^{μs} and e^{B_aᵀs}Ge^{B_b s}: small Sylvester-type integrals
+/// ([`matrix_integral`]).
 pub fn segment_energy(
     flow: &RegionFlow,
     y: &DVector<f64>,
@@ -147,8 +235,11 @@ pub fn segment_energy(
     let omega = flow.omega();
     let mut coefficients = Vec::with_capacity(tables.exponents.len());
     for t in flow.terms() {
+        if let TermKind::Block { .. } = t.kind {
+            continue;
+        }
         let w = flow.coefficient(y, t);
-        if t.pair {
+        if t.is_pair() {
             coefficients.push(w.conj());
         }
         coefficients.push(w);
@@ -192,5 +283,88 @@ pub fn segment_energy(
                         * exp_integral(mu - iw, s_end, g * forced_growth.conj()));
         }
     }
+    if !tables.blocks.is_empty() {
+        let (w, d) = block_energy(
+            tables,
+            y,
+            &coefficients,
+            &growth,
+            forcing_phase,
+            omega,
+            s_end,
+        );
+        work += w;
+        dissipated += d;
+    }
     (work.re, dissipated.re)
+}
+
+/// The blocks' share of [`segment_energy`]: their cross terms with every exponential,
+/// with each other and with themselves, and their forcing work.
+fn block_energy(
+    tables: &EnergyTables,
+    y: &DVector<f64>,
+    coefficients: &[Complex64],
+    growth: &[Complex64],
+    forcing_phase: Complex64,
+    omega: f64,
+    s_end: f64,
+) -> (Complex64, Complex64) {
+    let one = Complex64::new(1.0, 0.0);
+    let (mut work, mut dissipated) = (Complex64::new(0.0, 0.0), Complex64::new(0.0, 0.0));
+    for (a, ta) in tables.blocks.iter().enumerate() {
+        let ya = DVector::from_vec(vec![
+            Complex64::new(y[ta.slot], 0.0),
+            Complex64::new(y[ta.slot + 1], 0.0),
+        ]);
+        let bt = complex2(ta.block.b, true);
+        let ebt = complex2(ta.block.exp(s_end), true);
+        // with each exponential m: 2 c_m y_aᵀ ∫ e^{(Bᵀ + μ_m)s} ds g
+        for ((g, &c), (&mu, &gm)) in ta
+            .with_exponentials
+            .iter()
+            .zip(coefficients)
+            .zip(tables.exponents.iter().zip(growth))
+        {
+            let gv = DVector::from_vec(g.to_vec());
+            let k = &bt + DMatrix::identity(2, 2) * mu;
+            let w = &ebt * &gv * gm;
+            let x = matrix_integral(&k, s_end, &gv, &w);
+            dissipated += 2.0 * c * ya.dot(&x);
+        }
+        // with itself and every later block: y_aᵀ X y_b, vec X = ∫e^{Ks}ds vec G with
+        // K = I⊗B_aᵀ + B_bᵀ⊗I (column-major vec)
+        for (offset, g) in ta.with_blocks.iter().enumerate() {
+            let tb = &tables.blocks[a + offset];
+            let bb = complex2(tb.block.b, false);
+            let ebb = complex2(tb.block.exp(s_end), false);
+            let gm = complex2(*g, false);
+            let k = DMatrix::identity(2, 2).kronecker(&bt)
+                + bb.transpose().kronecker(&DMatrix::identity(2, 2));
+            let v = DVector::from_iterator(4, gm.iter().cloned());
+            let w = DVector::from_iterator(4, (&ebt * &gm * &ebb).iter().cloned());
+            let x = matrix_integral(&k, s_end, &v, &w);
+            let xm = DMatrix::from_column_slice(2, 2, x.as_slice());
+            let yb = DVector::from_vec(vec![
+                Complex64::new(y[tb.slot], 0.0),
+                Complex64::new(y[tb.slot + 1], 0.0),
+            ]);
+            let weight = if offset == 0 { 1.0 } else { 2.0 };
+            dissipated += weight * (ya.transpose() * xm * yb)[(0, 0)];
+        }
+        if omega > 0.0 {
+            // fᵀP ∫ e^{Bs} y cos(θ₀ + ωs): through e^{(B ± iω)s}
+            let b = complex2(ta.block.b, false);
+            let eb = complex2(ta.block.exp(s_end), false);
+            let fp = DVector::from_vec(ta.forcing.map(|f| Complex64::new(f, 0.0)).to_vec());
+            for (sign, phase) in [(1.0, forcing_phase), (-1.0, forcing_phase.conj())] {
+                let iw = Complex64::new(0.0, sign * omega);
+                let k = &b + DMatrix::identity(2, 2) * iw;
+                let w = &eb * &ya * polar(1.0, sign * omega * s_end);
+                let x = matrix_integral(&k, s_end, &ya, &w);
+                work += phase * fp.dot(&x) * one;
+            }
+        }
+    }
+    (work, dissipated)
 }

@@ -33,7 +33,8 @@ pub use observe::{
     TipMaximum,
 };
 
-use crate::flow::{FlowError, RegionFlow};
+use crate::error::Error;
+use crate::flow::{FlowError, RegionFlow, TermKind};
 use crate::galerkin::{GalerkinModel, Region};
 use energy::EnergyTables;
 use nalgebra::DVector;
@@ -104,26 +105,38 @@ struct Segment<'a> {
     y: DVector<f64>,
     phase0: f64,
     signal: TipSignal,
+    /// 2|ḋ_modal(0) − ḋ_state|: the representation error of the tip velocity.
+    velocity_floor: f64,
     /// +1 in free flight (g = d − d₀), −1 in contact (g = d₀ − d).
     sign: f64,
     gap: f64,
 }
 
 impl<'a> Segment<'a> {
-    fn new(flow: &'a RegionFlow, x: &DVector<f64>, phase0: f64, gap: f64) -> Self {
+    fn new(
+        flow: &'a RegionFlow,
+        x: &DVector<f64>,
+        phase0: f64,
+        gap: f64,
+        tip: &DVector<f64>,
+    ) -> Self {
         let y = flow.modal(x, phase0);
         let terms = flow.terms().iter().map(|t| {
             let a = t.tip * flow.coefficient(&y, t);
-            if t.pair {
-                Term::Pair {
+            match t.kind {
+                TermKind::Pair => Term::Pair {
                     a,
                     lambda: t.lambda,
-                }
-            } else {
-                Term::Real {
+                },
+                TermKind::Real => Term::Real {
                     a: a.re,
                     lambda: t.lambda.re,
-                }
+                },
+                TermKind::Block { block, tip, .. } => Term::Block {
+                    block,
+                    tip,
+                    y: [y[t.slot], y[t.slot + 1]],
+                },
             }
         });
         let signal = TipSignal::new(
@@ -134,10 +147,16 @@ impl<'a> Segment<'a> {
             gap.abs(),
             terms,
         );
+        // the modal representation's error at s = 0, against the state itself
+        let n = flow.modes();
+        let (d_state, v_state) = (tip.dot(&x.rows(0, n)), tip.dot(&x.rows(n, n)));
+        let (d_modal, v_modal) = signal.tip(0.0);
+        let signal = signal.with_floor(2.0 * (d_modal - d_state).abs());
         Self {
             flow,
             phase0,
             signal,
+            velocity_floor: 2.0 * (v_modal - v_state).abs(),
             y,
             sign: if flow.region() == Region::Free {
                 1.0
@@ -261,6 +280,7 @@ impl Simulator {
             x,
             self.free.omega() * clock.offset,
             self.model.params().gap,
+            self.model.tip(),
         );
         stats.segments += 1;
         let crossing = seg.next_switch(horizon, self.h_min(), self.settings.root_tolerance, stats);
@@ -269,7 +289,12 @@ impl Simulator {
     }
 
     /// Runs `periods` forcing periods from state x at the start of cycle 0 (t = 0).
-    pub fn run(&self, x0: &DVector<f64>, periods: u64, observer: &mut dyn Observer) -> RunEnd {
+    pub fn run(
+        &self,
+        x0: &DVector<f64>,
+        periods: u64,
+        observer: &mut dyn Observer,
+    ) -> Result<RunEnd, Error> {
         self.run_from(x0, self.clock_at_cycle(0), periods, observer)
     }
 
@@ -280,20 +305,24 @@ impl Simulator {
         start: Clock,
         periods: u64,
         observer: &mut dyn Observer,
-    ) -> RunEnd {
+    ) -> Result<RunEnd, Error> {
         let end = Clock::at_cycle(start.period, start.cycles.saturating_add_unsigned(periods));
         self.run_until(x0, start, end, observer)
     }
 
     /// Runs from `start` until the clock reads `end` (any time, not only a period
     /// boundary); nothing happens if `end` is not after `start`.
+    ///
+    /// Invariant, checked at every switch: an entry into contact moves into the stop
+    /// (ḋ ≥ 0) and an exit away from it (ḋ ≤ 0), beyond the grazing band. A run that breaks
+    /// it stops with [`Error::Invariant`] rather than return a wrong trajectory.
     pub fn run_until(
         &self,
         x0: &DVector<f64>,
         start: Clock,
         end: Clock,
         observer: &mut dyn Observer,
-    ) -> RunEnd {
+    ) -> Result<RunEnd, Error> {
         let period = self.period();
         let omega = self.omega();
         let gap = self.model.params().gap;
@@ -306,7 +335,7 @@ impl Simulator {
         observer.begin(self, &clock, &x);
         while clock.before(&end) {
             let flow = self.flow(region);
-            let seg = Segment::new(flow, &x, omega * clock.offset, gap);
+            let seg = Segment::new(flow, &x, omega * clock.offset, gap, self.model.tip());
             stats.segments += 1;
             // Segments end at a period boundary when samples are taken there, and after at
             // most MAX_SEGMENT_PERIODS periods otherwise, so the forcing phase argument
@@ -341,9 +370,18 @@ impl Simulator {
                     clock.advance(s);
                     let (_, v) = seg.signal.tip(s);
                     // A touch whose normal velocity vanishes to round-off (relative to the
-                    // tip velocity scale) does not enter the other region.
-                    let vscale = 1e-13 * seg.signal.velocity_bound(s);
+                    // tip velocity scale, plus the representation's error) does not enter
+                    // the other region.
+                    let vscale = 1e-13 * seg.signal.velocity_bound(s) + seg.velocity_floor;
                     let grazing = v.abs() <= vscale;
+                    let entering = region == Region::Free;
+                    if !grazing && (entering != (v > 0.0)) {
+                        return Err(Error::Invariant(format!(
+                            "at t = {:.17e} the tip {} contact with velocity {v:e}",
+                            clock.time(),
+                            if entering { "entered" } else { "left" }
+                        )));
+                    }
                     observer.event(&EventView {
                         clock,
                         entering: region == Region::Free,
@@ -367,11 +405,11 @@ impl Simulator {
             }
         }
         observer.end(self, &clock, &x, &stats);
-        RunEnd {
+        Ok(RunEnd {
             state: x,
             clock,
             stats,
-        }
+        })
     }
 
     /// The region a state starts in ([`GalerkinModel::starting_region`]).

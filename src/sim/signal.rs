@@ -17,7 +17,7 @@
 //!
 //! which is what makes the crossing search ([`super::crossing`]) certified.
 
-use crate::flow::decay;
+use crate::flow::{decay, Block2};
 use crate::numerics::polar;
 use num_complex::Complex64;
 
@@ -38,6 +38,46 @@ pub enum Term {
         /// λ_j ≤ 0.
         lambda: f64,
     },
+    /// cᵀe^{Bs}y for a nearly defective pair as a 2 × 2 block (critical damping).
+    Block {
+        /// B.
+        block: Block2,
+        /// c: the tip displacement per unit of each block coordinate.
+        tip: [f64; 2],
+        /// y: the block's coordinates at s = 0.
+        y: [f64; 2],
+    },
+}
+
+/// A block term cᵀe^{Bs}y: its k-th derivative is r_kᵀe^{Bs}y with r_k = (Bᵀ)^k c, and
+/// for s' ≥ s, |r_kᵀe^{Bs'}y| ≤ |r_k|·K·|e^{Bs}y| with K ≥ sup_τ ‖e^{Bτ}‖ (the block's
+/// growth bound), which stays finite through critical damping.
+#[derive(Debug, Clone, Copy)]
+struct BlockTerm {
+    block: Block2,
+    y: [f64; 2],
+    /// r_0 … r_3.
+    r: [[f64; 2]; 4],
+    /// |r_k|·K.
+    bound: [f64; 4],
+}
+
+impl BlockTerm {
+    fn new(block: Block2, tip: [f64; 2], y: [f64; 2]) -> Self {
+        let b = block.b;
+        let mut r = [tip; 4];
+        for k in 1..4 {
+            let p = r[k - 1];
+            // (Bᵀ)p
+            r[k] = [
+                b[0][0] * p[0] + b[1][0] * p[1],
+                b[0][1] * p[0] + b[1][1] * p[1],
+            ];
+        }
+        let growth = block.growth_bound();
+        let bound = r.map(|v| (v[0] * v[0] + v[1] * v[1]).sqrt() * growth);
+        Self { block, y, r, bound }
+    }
 }
 
 /// A complex-pair term Re(a e^{λs}).
@@ -83,6 +123,16 @@ pub struct Local {
     pub bound3: f64,
     /// Σ of the magnitudes of g's terms: its round-off scale.
     pub scale: f64,
+    /// An absolute error floor of g beyond its round-off: the error of the segment's
+    /// modal representation of its start state (see [`TipSignal::with_floor`]).
+    pub floor: f64,
+}
+
+impl Local {
+    /// g's uncertainty: round-off of the sum (8ε·scale) plus the representation floor.
+    pub fn noise(&self) -> f64 {
+        8.0 * f64::EPSILON * self.scale + self.floor
+    }
 }
 
 /// Anything the certified crossing search can run on: g with bounds valid on [s, ∞).
@@ -104,6 +154,9 @@ pub struct TipSignal {
     constant: f64,
     pairs: Vec<PairTerm>,
     reals: Vec<RealTerm>,
+    blocks: Vec<BlockTerm>,
+    /// The error of the modal representation of the start state, in tip displacement.
+    floor: f64,
     /// A term below this (1e-17 of Σ|a_k| + |P| + |c| + `level_scale`, the signal's
     /// magnitude scale at s = 0) is below g's round-off: its value is skipped, and
     /// 2·`negligible` stands in for its magnitude in the bounds, so no exp or sincos is
@@ -133,7 +186,7 @@ impl TipSignal {
         level_scale: f64,
         terms: impl IntoIterator<Item = Term>,
     ) -> Self {
-        let (mut pairs, mut reals) = (Vec::new(), Vec::new());
+        let (mut pairs, mut reals, mut blocks) = (Vec::new(), Vec::new(), Vec::new());
         let mut scale0 = forced.norm() + constant.abs() + level_scale;
         for t in terms {
             match t {
@@ -157,6 +210,11 @@ impl TipSignal {
                         negligible_from: 0.0,
                     });
                 }
+                Term::Block { block, tip, y } => {
+                    let term = BlockTerm::new(block, tip, y);
+                    scale0 += term.bound[0] * (y[0] * y[0] + y[1] * y[1]).sqrt();
+                    blocks.push(term);
+                }
             }
         }
         let negligible = 1e-17 * scale0;
@@ -174,8 +232,20 @@ impl TipSignal {
             constant,
             pairs,
             reals,
+            blocks,
+            floor: 0.0,
             negligible,
         }
+    }
+
+    /// The same signal with an absolute error floor: |d(0) − d_state|, the difference
+    /// between the tip displacement the modal representation gives at s = 0 and the one
+    /// computed directly from the state (about κε of the state, κ the basis condition). A
+    /// start on the switching surface is only known to that accuracy, so the search treats
+    /// values inside it as on the surface.
+    pub fn with_floor(mut self, floor: f64) -> Self {
+        self.floor = floor;
+        self
     }
 
     /// Tip displacement, velocity and acceleration at s, with the bound on |d̈| from s on.
@@ -207,7 +277,15 @@ impl TipSignal {
             .iter()
             .map(|t| (t.a * t.lambda * decay(t.lambda * s)).abs())
             .sum();
-        self.omega * self.forced_amplitude + pairs + reals
+        let blocks: f64 = self
+            .blocks
+            .iter()
+            .map(|t| {
+                let z = t.block.apply(s, t.y);
+                (t.r[1][0] * z[0] + t.r[1][1] * z[1]).abs()
+            })
+            .sum();
+        self.omega * self.forced_amplitude + pairs + reals + blocks
     }
 }
 
@@ -256,6 +334,17 @@ impl Signal for TipSignal {
             b3 += mag * l2 * t.lambda.abs();
             scale += mag;
         }
+        for t in &self.blocks {
+            let z = t.block.apply(s, t.y);
+            let size = (z[0] * z[0] + z[1] * z[1]).sqrt();
+            let dot = |r: [f64; 2]| r[0] * z[0] + r[1] * z[1];
+            d += dot(t.r[0]);
+            v += dot(t.r[1]);
+            acc += dot(t.r[2]);
+            b2 += t.bound[2] * size;
+            b3 += t.bound[3] * size;
+            scale += t.bound[0] * size;
+        }
         Local {
             g: target.sign * (d - target.level),
             gd: target.sign * v,
@@ -263,6 +352,7 @@ impl Signal for TipSignal {
             bound2: b2,
             bound3: b3,
             scale,
+            floor: self.floor,
         }
     }
 }

@@ -157,10 +157,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             json,
         } => modes_command(modes, stop_stiffness, json),
         Command::Simulate { args, json } => {
-            let report = simulate::run(&args).map_err(|e| match e {
-                simulate::Error::Parameter(p) => Failure::BadInput(p),
-                simulate::Error::Flow(f) => Failure::Other(f.to_string()),
-            })?;
+            let report = simulate::run(&args)?;
             if json {
                 outln!(
                     "{}",

@@ -5,8 +5,8 @@
 //! corrected amplitude (unit unconstrained tip amplitude at resonance; errata E2), and the
 //! damping is material, γ = 2ζ₁/(β₁⁻)² (errata E3).
 
+use impacting_cantilever::error::Error;
 use impacting_cantilever::error::{self, ParameterError};
-use impacting_cantilever::flow::FlowError;
 use impacting_cantilever::galerkin::{self, GalerkinModel};
 use impacting_cantilever::orbit::{detect_period, MAX_PERIOD, PERIODIC_TOLERANCE};
 use impacting_cantilever::problems::Forced;
@@ -38,17 +38,6 @@ pub struct Args {
     /// Periods recorded after that.
     #[arg(long, default_value_t = 32)]
     pub record: u64,
-}
-
-/// Why the command failed.
-#[derive(Debug, thiserror::Error)]
-pub enum Error {
-    /// Bad input.
-    #[error(transparent)]
-    Parameter(#[from] ParameterError),
-    /// The flow could not be built.
-    #[error(transparent)]
-    Flow(#[from] FlowError),
 }
 
 /// What the command reports.
@@ -109,7 +98,7 @@ pub fn run(args: &Args) -> Result<Report, Error> {
     let n2 = 2 * sim.model().modes();
     let rest = DVector::zeros(n2);
     let mut transient = Energy::default();
-    let x = sim.run(&rest, args.periods, &mut transient).state;
+    let x = sim.run(&rest, args.periods, &mut transient)?.state;
     let start = sim.clock_at_cycle(args.periods as i64);
     let (mut events, mut strobe, mut energy, mut max_tip) = (
         Events::default(),
@@ -122,7 +111,7 @@ pub fn run(args: &Args) -> Result<Report, Error> {
         start,
         args.record,
         &mut (&mut events, &mut strobe, &mut energy, &mut max_tip),
-    );
+    )?;
     let wall_seconds = started.elapsed().as_secs_f64();
     let (period_m, periodicity_residual) = detect_period(
         &strobe.states(),

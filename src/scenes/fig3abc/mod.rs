@@ -99,7 +99,7 @@ fn one_contact(n: usize, eps: f64, alpha: f64) -> Result<(DVector<f64>, f64), Er
     let sim = Simulator::new(model)?;
     // unforced: one bookkeeping "period" is one time unit, far longer than the contact
     let mut events = Events::with_states();
-    sim.run(&x0, 1, &mut events);
+    sim.run(&x0, 1, &mut events)?;
     let exit = events.events.first().ok_or_else(|| {
         Error::Unsupported(format!(
             "N = {n}, ε = {eps:e}: the tip did not leave the stop within one time unit"

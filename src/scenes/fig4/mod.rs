@@ -156,7 +156,7 @@ fn panel(p: &Fig4Params, modes: usize, paper: OrbitKind) -> Result<Fig4Panel, Er
     let sim = Simulator::new(m.clone())?;
     let period = sim.period();
     let rest = DVector::zeros(2 * modes);
-    let o = orbit::settle(&sim, &rest, p.transient, p.window, p.dense_per_period);
+    let o = orbit::settle(&sim, &rest, p.transient, p.window, p.dense_per_period)?;
     let end = o.window_start + p.window as i64;
     let span = match o.kind {
         OrbitKind::Periodic { m, .. } => m as i64,
@@ -195,7 +195,7 @@ fn panel(p: &Fig4Params, modes: usize, paper: OrbitKind) -> Result<Fig4Panel, Er
         .collect();
     // certified maximum over one more orbit period (the orbit repeats to 1e-9)
     let mut max_tip = TipMax::default();
-    sim.run_from(&o.state, sim.clock_at_cycle(end), span as u64, &mut max_tip);
+    sim.run_from(&o.state, sim.clock_at_cycle(end), span as u64, &mut max_tip)?;
     let max_tip = max_tip
         .maximum
         .map(|m| m.value / amp)
@@ -206,11 +206,11 @@ fn panel(p: &Fig4Params, modes: usize, paper: OrbitKind) -> Result<Fig4Panel, Er
         .map(|w| w[1].1)
         .reduce(f64::min);
 
-    let long = orbit::settle(&sim, &rest, p.long_transient, p.window, 0).kind;
+    let long = orbit::settle(&sim, &rest, p.long_transient, p.window, 0)?.kind;
     let loose_sim = sim.clone().with_settings(Settings {
         root_tolerance: p.loose_root_tolerance,
     });
-    let loose = orbit::settle(&loose_sim, &rest, p.transient, p.window, 0).kind;
+    let loose = orbit::settle(&loose_sim, &rest, p.transient, p.window, 0)?.kind;
     let reference = p.reference_rtol.map(|rtol| {
         let t_end = end as f64 * period;
         let r = dopri5::integrate(
@@ -241,9 +241,9 @@ fn panel(p: &Fig4Params, modes: usize, paper: OrbitKind) -> Result<Fig4Panel, Er
         });
         (entries, diff)
     });
-    let random_starts = orbit::random_orbits(&sim, p.random_starts, p.seed, p.transient, p.window);
+    let random_starts = orbit::random_orbits(&sim, p.random_starts, p.seed, p.transient, p.window)?;
     let literal = Simulator::new(case(p, modes, p.literal_caption_zeta1).model()?)?;
-    let literal_caption = orbit::settle(&literal, &rest, p.transient, p.window, 0).kind;
+    let literal_caption = orbit::settle(&literal, &rest, p.transient, p.window, 0)?.kind;
     Ok(Fig4Panel {
         modes,
         kind: o.kind,

@@ -207,7 +207,7 @@ fn point(
     let (amp, vamp) = m.free_tip_amplitude();
     let omega = m.omega();
     let sim = Simulator::new(m)?;
-    Ok((0..p.starts)
+    (0..p.starts)
         .map(|s| {
             let x0 = if s == 0 {
                 DVector::zeros(2 * modes)
@@ -215,17 +215,17 @@ fn point(
                 let mut rng = SplitMix64::for_point(p.seed, modes as u64, k_index as u64, s as u64);
                 orbit::random_state(&mut rng, modes, 4.0 * amp, omega)
             };
-            let o = orbit::settle(&sim, &x0, p.transient, p.recorded, 0);
+            let o = orbit::settle(&sim, &x0, p.transient, p.recorded, 0)?;
             let end = o.window_start + p.recorded as i64;
-            StartResult {
+            Ok(StartResult {
                 kind: o.kind,
                 impact_velocities: o
                     .entries(o.window_start, end)
                     .map(|e| e.tip_velocity / vamp)
                     .collect(),
-            }
+            })
         })
-        .collect())
+        .collect()
 }
 
 /// Runs the scene; `progress` is called once per finished (N, k) point.

@@ -147,14 +147,15 @@ pub fn compute(p: &WorkPrecisionParams) -> Result<WorkPrecisionData, Error> {
     let run_with_events = |sim: &Simulator, x0: &DVector<f64>, periods: u64| {
         let mut events = Events::default();
         let end = sim.run(x0, periods, &mut events);
-        (end, events.events)
+        end.map(|end| (end, events.events))
     };
     let mut exact_runs = Vec::new();
     for &tol in &p.root_tolerances {
         let sim = Simulator::new(model.clone())?.with_settings(Settings {
             root_tolerance: tol,
         });
-        let ((end, events), secs) = best_of(p.repeats, || run_with_events(&sim, &x0, p.periods));
+        let (run, secs) = best_of(p.repeats, || run_with_events(&sim, &x0, p.periods));
+        let (end, events) = run?;
         let times: Vec<(f64, bool)> = events.iter().map(|e| (e.time, e.entering)).collect();
         exact_runs.push((tol, end.state, times, secs, end.stats.evaluations));
     }
@@ -213,8 +214,8 @@ pub fn compute(p: &WorkPrecisionParams) -> Result<WorkPrecisionData, Error> {
     ] {
         let sim = Simulator::new(case.model()?)?;
         let x0 = DVector::zeros(2 * case.modes);
-        let ((end, events), seconds) =
-            best_of(p.repeats, || run_with_events(&sim, &x0, p.cost_periods));
+        let (run, seconds) = best_of(p.repeats, || run_with_events(&sim, &x0, p.cost_periods));
+        let (end, events) = run?;
         costs.push(CostRun {
             label: label.into(),
             modes: case.modes,
