@@ -54,7 +54,11 @@ pub enum FlowError {
     Unstable(f64),
 }
 
+pub mod basis;
 pub mod block;
+
+pub use basis::{balance, eigen_balanced};
+use basis::{conjugate_halves, invert, norm1, solve, ModalBasis};
 
 pub use block::Block2;
 
@@ -151,53 +155,20 @@ impl RegionFlow {
     pub fn new(model: &GalerkinModel, region: Region) -> Result<Self, FlowError> {
         let n = model.modes();
         let a = model.state_matrix(region);
-        let eig = eigen_balanced_parts(&a)?;
-        let lambda = eig.lambda.clone();
+        let ModalBasis {
+            lambda,
+            v,
+            blocks,
+            plane_residual,
+        } = match region {
+            Region::Free => basis::free(model),
+            Region::Contact => basis::general(&a)?,
+        };
         let scale = lambda.iter().map(|l| l.norm()).fold(0.0, f64::max);
         if let Some(l) = lambda.iter().find(|l| l.re > 1e-12 * scale) {
             return Err(FlowError::Unstable(l.re));
         }
-        // nearly defective pairs: replace their two eigenvector columns by a basis W of the
-        // invariant plane (computed in balanced coordinates, W = D·Q)
-        let mut v = eig.v.clone();
-        let mut blocks: Vec<(usize, usize, Block2)> = Vec::new();
-        let mut plane_residual: f64 = 0.0;
-        for (i, j) in near_defective_pairs(&lambda, &eig.v_balanced) {
-            let start = DMatrix::from_fn(2 * n, 2, |r, c| {
-                let u = eig.v_balanced[(r, i)];
-                let w = eig.v_balanced[(r, j)];
-                match (c, lambda[i].im != 0.0) {
-                    (0, _) => u.re,
-                    (_, true) => u.im,
-                    (_, false) => w.re,
-                }
-            });
-            // a real shift a quarter of the way from the pair to the nearest other eigenvalue
-            let mid = 0.5 * (lambda[i] + lambda[j]);
-            let nearest = (0..lambda.len())
-                .filter(|&k| k != i && k != j)
-                .map(|k| (lambda[k] - mid).norm())
-                .fold(f64::INFINITY, f64::min);
-            let sigma = mid.re + 0.25 * nearest.min(mid.norm());
-            // a plane that is not invariant to round-off would make the flow inexact: keep
-            // the eigenvectors then (their condition is checked below)
-            let Some((q, block, residual)) = block::invariant_plane(&eig.balanced, sigma, start)
-            else {
-                continue;
-            };
-            if residual > 1e-13 {
-                continue;
-            }
-            plane_residual = plane_residual.max(residual);
-            for c in 0..2 {
-                let col = if c == 0 { i } else { j };
-                for r in 0..2 * n {
-                    v[(r, col)] = Complex64::new(q[(r, c)] * eig.d[r], 0.0);
-                }
-            }
-            blocks.push((i, j, block));
-        }
-        let v_inv = v.clone().try_inverse().ok_or(FlowError::Eigen)?;
+        let v_inv = invert(&v)?;
         let condition = norm1(&v) * norm1(&v_inv);
         if !condition.is_finite() || condition > MAX_EIGENVECTOR_CONDITION {
             return Err(FlowError::IllConditioned(condition));
@@ -213,7 +184,7 @@ impl RegionFlow {
         for j in 0..n {
             rhs[n + j] = Complex64::new(model.forcing_amplitude()[j], 0.0);
         }
-        let forced = m.lu().solve(&rhs).ok_or(FlowError::Eigen)?;
+        let forced = solve(&m, &rhs)?;
         let preload = model.stop_preload(region);
         let mut static_state = DVector::zeros(2 * n);
         if region == Region::Contact && preload.iter().any(|p| *p != 0.0) {
@@ -442,173 +413,4 @@ pub fn decay(x: f64) -> f64 {
     } else {
         x.exp()
     }
-}
-
-/// Indices of eigenvalues with Im ≥ 0, each marked as a conjugate pair or a real one
-/// (an error if a complex eigenvalue has no partner: the eigensolver failed).
-fn conjugate_halves(lambda: &[Complex64]) -> Result<Vec<(usize, bool)>, FlowError> {
-    let mut used = vec![false; lambda.len()];
-    let mut half = Vec::new();
-    for k in 0..lambda.len() {
-        if used[k] {
-            continue;
-        }
-        used[k] = true;
-        if lambda[k].im == 0.0 {
-            half.push((k, false));
-            continue;
-        }
-        // its conjugate partner: the closest unused eigenvalue to conj(λ_k)
-        let partner = (0..lambda.len())
-            .filter(|&j| !used[j])
-            .min_by(|&a, &b| {
-                (lambda[a] - lambda[k].conj())
-                    .norm()
-                    .total_cmp(&(lambda[b] - lambda[k].conj()).norm())
-            })
-            .ok_or(FlowError::Eigen)?;
-        used[partner] = true;
-        half.push((if lambda[k].im > 0.0 { k } else { partner }, true));
-    }
-    Ok(half)
-}
-
-fn norm1(m: &DMatrix<Complex64>) -> f64 {
-    m.column_iter()
-        .map(|c| c.iter().map(|z| z.norm()).sum::<f64>())
-        .fold(0.0, f64::max)
-}
-
-/// Parlett–Reinsch balancing (radix 2, as LAPACK's gebal without permutation): returns
-/// the diagonal d with D⁻¹AD balanced. Powers of two keep the scaling exact.
-pub fn balance(a: &DMatrix<f64>) -> Vec<f64> {
-    let n = a.nrows();
-    let mut b = a.clone();
-    let mut d = vec![1.0; n];
-    loop {
-        let mut converged = true;
-        for i in 0..n {
-            let c: f64 = (0..n).filter(|&j| j != i).map(|j| b[(j, i)].abs()).sum();
-            let r: f64 = (0..n).filter(|&j| j != i).map(|j| b[(i, j)].abs()).sum();
-            if c == 0.0 || r == 0.0 {
-                continue;
-            }
-            let s = c + r;
-            let (mut f, mut cc) = (1.0, c);
-            while cc < r / 2.0 {
-                f *= 2.0;
-                cc *= 4.0;
-            }
-            while cc > r * 2.0 {
-                f /= 2.0;
-                cc /= 4.0;
-            }
-            if (c * f + r / f) < 0.95 * s {
-                converged = false;
-                d[i] *= f;
-                for j in 0..n {
-                    b[(i, j)] /= f;
-                    b[(j, i)] *= f;
-                }
-            }
-        }
-        if converged {
-            return d;
-        }
-    }
-}
-
-/// An eigendecomposition computed on the balanced form D⁻¹AD.
-struct BalancedEigen {
-    lambda: Vec<Complex64>,
-    /// Eigenvectors of A (D times those of the balanced matrix).
-    v: DMatrix<Complex64>,
-    /// Eigenvectors of the balanced matrix.
-    v_balanced: DMatrix<Complex64>,
-    /// The balanced matrix.
-    balanced: DMatrix<f64>,
-    /// D.
-    d: Vec<f64>,
-}
-
-fn eigen_balanced_parts(a: &DMatrix<f64>) -> Result<BalancedEigen, FlowError> {
-    let n = a.nrows();
-    let d = balance(a);
-    let balanced = DMatrix::from_fn(n, n, |i, j| a[(i, j)] * d[j] / d[i]);
-    let m = faer::Mat::<f64>::from_fn(n, n, |i, j| balanced[(i, j)]);
-    let evd = m.eigen().map_err(|_| FlowError::Eigen)?;
-    let s = evd.S();
-    let u = evd.U();
-    let lambda: Vec<Complex64> = (0..n).map(|k| s[k]).collect();
-    let v_balanced = DMatrix::from_fn(n, n, |i, k| u[(i, k)]);
-    // eigenvectors of A are D times those of D⁻¹AD
-    let v = DMatrix::from_fn(n, n, |i, k| u[(i, k)] * d[i]);
-    Ok(BalancedEigen {
-        lambda,
-        v,
-        v_balanced,
-        balanced,
-        d,
-    })
-}
-
-/// Eigenvalues and right eigenvectors of a real matrix, computed on its balanced form.
-pub fn eigen_balanced(a: &DMatrix<f64>) -> Result<(Vec<Complex64>, DMatrix<Complex64>), FlowError> {
-    let e = eigen_balanced_parts(a)?;
-    Ok((e.lambda, e.v))
-}
-
-/// Nearly defective pairs (i, j): a complex pair whose eigenvector is nearly real up to a
-/// phase, or two close real eigenvalues with nearly parallel eigenvectors — both mean a
-/// pair near critical damping. Eigenvalues that are merely close (the slow over-damped
-/// modes of material damping crowd near −1/γ) have independent eigenvectors and are
-/// left alone. Each eigenvalue joins at most one pair.
-fn near_defective_pairs(lambda: &[Complex64], v: &DMatrix<Complex64>) -> Vec<(usize, usize)> {
-    let n = lambda.len();
-    let cosine = |i: usize, j: usize, conjugate: bool| {
-        let (a, b) = (v.column(i), v.column(j));
-        let dot: Complex64 = if conjugate {
-            a.iter().zip(b.iter()).map(|(x, y)| x * y).sum()
-        } else {
-            a.iter().zip(b.iter()).map(|(x, y)| x.conj() * y).sum()
-        };
-        dot.norm() / (a.norm() * b.norm())
-    };
-    let close = |i: usize, j: usize| {
-        (lambda[i] - lambda[j]).norm()
-            <= NEAR_DEFECTIVE_SEPARATION * lambda[i].norm().max(lambda[j].norm())
-    };
-    let mut used = vec![false; n];
-    let mut pairs = Vec::new();
-    // complex pairs near the real axis: v and v̄ are nearly parallel when vᵀv ≈ |v|²
-    for i in 0..n {
-        if used[i] || lambda[i].im <= 0.0 {
-            continue;
-        }
-        let partner = (0..n).filter(|&j| !used[j] && j != i).min_by(|&a, &b| {
-            (lambda[a] - lambda[i].conj())
-                .norm()
-                .total_cmp(&(lambda[b] - lambda[i].conj()).norm())
-        });
-        if let Some(j) = partner {
-            if close(i, j) && cosine(i, i, true) > NEAR_DEFECTIVE_COSINE {
-                used[i] = true;
-                used[j] = true;
-                pairs.push((i, j));
-            }
-        }
-    }
-    // real pairs: neighbours (within two places) in the sorted real spectrum
-    let mut reals: Vec<usize> = (0..n).filter(|&i| lambda[i].im == 0.0).collect();
-    reals.sort_by(|&a, &b| lambda[a].re.total_cmp(&lambda[b].re));
-    for (p, &i) in reals.iter().enumerate() {
-        for &j in reals.iter().skip(p + 1).take(2) {
-            if !used[i] && !used[j] && close(i, j) && cosine(i, j, false) > NEAR_DEFECTIVE_COSINE {
-                used[i] = true;
-                used[j] = true;
-                pairs.push((i.min(j), i.max(j)));
-            }
-        }
-    }
-    pairs
 }

@@ -122,9 +122,11 @@ impl EnergyTables {
             exponents.push(Complex64::new(0.0, flow.omega()));
         }
         let c = model.damping();
-        let gram = DMatrix::from_fn(p.len(), p.len(), |a, b| {
-            (0..n).map(|i| p[a][i] * p[b][i] * c[i]).sum()
-        });
+        // G = Pᵀ diag(C) P as one blocked product (O(N³), seconds at N = 400 as loops)
+        let pm = faer::Mat::<Complex64>::from_fn(n, p.len(), |i, m| p[m][i]);
+        let cp = faer::Mat::<Complex64>::from_fn(n, p.len(), |i, m| p[m][i] * c[i]);
+        let g = pm.transpose() * &cp;
+        let gram = DMatrix::from_fn(p.len(), p.len(), |a, b| g[(a, b)]);
         let f = model.forcing_amplitude();
         let forcing = p
             .iter()
