@@ -56,12 +56,26 @@ impl ParameterError {
     }
 }
 
+/// A number as a person would type it: plain for moderate magnitudes, scientific beyond
+/// (an f64's Display writes 1e308 with 308 zeros).
+pub fn number(x: f64) -> String {
+    if x != 0.0 && x.is_finite() && !(1e-4..1e6).contains(&x.abs()) {
+        format!("{x:e}")
+    } else {
+        x.to_string()
+    }
+}
+
 /// `value` must be finite and ≥ 0.
 pub fn finite_non_negative(name: &str, value: f64) -> Result<f64, ParameterError> {
     if value.is_finite() && value >= 0.0 {
         Ok(value)
     } else {
-        Err(ParameterError::new(name, value, "a finite number ≥ 0"))
+        Err(ParameterError::new(
+            name,
+            number(value),
+            "a finite number ≥ 0",
+        ))
     }
 }
 
@@ -70,7 +84,11 @@ pub fn finite_positive(name: &str, value: f64) -> Result<f64, ParameterError> {
     if value.is_finite() && value > 0.0 {
         Ok(value)
     } else {
-        Err(ParameterError::new(name, value, "a finite number > 0"))
+        Err(ParameterError::new(
+            name,
+            number(value),
+            "a finite number > 0",
+        ))
     }
 }
 
@@ -79,7 +97,7 @@ pub fn finite(name: &str, value: f64) -> Result<f64, ParameterError> {
     if value.is_finite() {
         Ok(value)
     } else {
-        Err(ParameterError::new(name, value, "a finite number"))
+        Err(ParameterError::new(name, number(value), "a finite number"))
     }
 }
 

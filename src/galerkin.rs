@@ -429,17 +429,23 @@ pub fn contact_eigenvalues(d: &[f64], stop_stiffness: f64) -> Vec<f64> {
             } else {
                 k * n as f64
             };
-            // f(μ) → −∞ as μ → 0⁺ and → +∞ (or > 0 at the upper end for i = N) as μ grows.
-            let f = |mu: f64| 1.0 + k * (0..n).map(|j| 1.0 / ((d[j] - d[i]) - mu)).sum::<f64>();
-            // 1e-100·width: far below any μ ≈ k/… of interest, far above underflow of k/μ.
-            let lo = width * 1e-100;
+            // The secular function divided by k, g(μ) = 1/k + Σ_j 1/(d_j − d_i − μ): the same
+            // roots, and no overflow for k up to f64::MAX. g → −∞ as μ → 0⁺ and is ≥ 0 at the
+            // upper end (for i = N: each term is ≥ −1/(kN), N of them).
+            let g = |mu: f64| 1.0 / k + (0..n).map(|j| 1.0 / ((d[j] - d[i]) - mu)).sum::<f64>();
             let hi = if i + 1 < n {
                 width * (1.0 - 4.0 * f64::EPSILON)
             } else {
                 width
             };
+            // a lower end with g < 0: the root is ≈ min(k, width) for any k, so start
+            // below that and halve (g(μ) ≈ −1/μ dominates as μ shrinks)
+            let mut lo = 0.5 * k.min(width);
+            while g(lo) >= 0.0 && lo > f64::MIN_POSITIVE * 4.0 {
+                lo *= 0.5;
+            }
             let mu =
-                brent(f, lo, hi, 1e-15).unwrap_or(if f(lo).abs() < f(hi).abs() { lo } else { hi });
+                brent(g, lo, hi, 1e-15).unwrap_or(if g(lo).abs() < g(hi).abs() { lo } else { hi });
             d[i] + mu
         })
         .collect()

@@ -23,7 +23,8 @@ use serde::Serialize;
 /// One rigid-impact event.
 #[derive(Debug, Clone, Serialize)]
 pub enum RigidEvent {
-    /// An impact: time, incoming and outgoing tip velocity φ(1)ᵀη̇.
+    /// An impact: time, incoming and outgoing tip velocity φ(1)ᵀη̇, and the modal
+    /// velocities η̇⁻ and η̇⁺ = −\[R\]η̇⁻.
     Impact {
         /// t.
         time: f64,
@@ -31,6 +32,10 @@ pub enum RigidEvent {
         incoming: f64,
         /// Tip velocity after.
         outgoing: f64,
+        /// Modal velocities before.
+        before: Vec<f64>,
+        /// Modal velocities after.
+        after: Vec<f64>,
     },
     /// Chattering detected: impacts accumulate at `accumulation`.
     Chatter {
@@ -90,6 +95,8 @@ pub struct RigidRun {
     pub state: DVector<f64>,
     /// The time at the end.
     pub time: f64,
+    /// The clock at the end (for chaining runs).
+    pub clock: Clock,
     /// How it ended.
     pub outcome: Outcome,
     /// Work counters of the free flights.
@@ -106,6 +113,7 @@ impl RigidRun {
                     time,
                     incoming,
                     outgoing,
+                    ..
                 } => Some((*time, *incoming, *outgoing)),
                 _ => None,
             })
@@ -155,25 +163,41 @@ impl RigidImpact {
 
     /// Runs from x0 at t = 0 until t_end.
     pub fn run(&self, x0: &DVector<f64>, t_end: f64) -> RigidRun {
+        let period = self.sim.period();
+        self.run_until(
+            x0,
+            Clock::at_cycle(period, 0),
+            Clock::at_time(period, t_end),
+        )
+    }
+
+    /// Runs from x0 at `start` (any time and forcing phase) until the clock reads `end`.
+    pub fn run_until(&self, x0: &DVector<f64>, start: Clock, end: Clock) -> RigidRun {
         let n = self.sim.model().modes();
         let period = self.sim.period();
-        let mut clock = Clock {
-            period,
-            cycles: 0,
-            offset: 0.0,
-        };
+        let t_end = end.time();
+        let mut clock = start;
         let mut x = x0.clone();
         let mut stats = Stats::default();
         let mut events = Vec::new();
         let mut impacts: Vec<(f64, f64)> = Vec::new();
         let mut v_scale = self.tip_velocity(&x).abs();
         let mut outcome = Outcome::Completed;
-        while clock.time() < t_end {
-            let horizon = (period - clock.offset).min(t_end - clock.time());
+        while clock.before(&end) {
+            // to the end of this period, or to `end` within it
+            let (horizon, last) = if clock.cycles < end.cycles {
+                (period - clock.offset, false)
+            } else {
+                (end.offset - clock.offset, true)
+            };
             let (crossing, state) = self.sim.free_flight(&x, &clock, horizon, &mut stats);
             x = state;
             let Some(s) = crossing else {
-                clock.advance(horizon);
+                if last {
+                    clock = end;
+                } else {
+                    clock = Clock::at_cycle(period, clock.cycles + 1);
+                }
                 continue;
             };
             clock.advance(s);
@@ -181,6 +205,7 @@ impl RigidImpact {
             let incoming = self.tip_velocity(&x);
             v_scale = v_scale.max(incoming.abs());
             // the law acts on the modal velocities; the displacement is continuous
+            let before: Vec<f64> = x.rows(n, n).iter().cloned().collect();
             let post = -(&self.law * x.rows(n, n));
             x.rows_mut(n, n).copy_from(&post);
             let outgoing = self.tip_velocity(&x);
@@ -188,6 +213,8 @@ impl RigidImpact {
                 time: t,
                 incoming,
                 outgoing,
+                before,
+                after: post.iter().cloned().collect(),
             });
             impacts.push((t, incoming));
             if impacts.len() > self.settings.max_impacts {
@@ -217,8 +244,7 @@ impl RigidImpact {
                         impacts.clear();
                     }
                     _ => {
-                        let rest = t_end - clock.time();
-                        clock.advance(rest.max(0.0));
+                        clock = end;
                         break;
                     }
                 }
@@ -227,6 +253,7 @@ impl RigidImpact {
         RigidRun {
             events,
             time: clock.time(),
+            clock,
             state: x,
             outcome,
             stats,

@@ -144,27 +144,27 @@ fn simulate_rejects_bad_values_with_one_line() {
         (
             "--stop-stiffness",
             "-1",
-            "error: invalid --stop-stiffness (k/k₁): got -1; allowed: a finite number ≥ 0\n",
+            "error: invalid --stop-stiffness (k/k₁): got -1; allowed: a number from 0 to 1e12\n",
         ),
         (
             "--zeta1",
             "0",
-            "error: invalid --zeta1 (ζ₁): got 0; allowed: a finite number > 0\n",
+            "error: invalid --zeta1 (ζ₁): got 0; allowed: a number from 1e-8 to 1000\n",
         ),
         (
             "--zeta1",
             "-0.5",
-            "error: invalid --zeta1 (ζ₁): got -0.5; allowed: a finite number > 0\n",
+            "error: invalid --zeta1 (ζ₁): got -0.5; allowed: a number from 1e-8 to 1000\n",
         ),
         (
             "--omega",
             "nan",
-            "error: invalid --omega (ω/(β₁⁻)²): got NaN; allowed: a finite number > 0\n",
+            "error: invalid --omega (ω/(β₁⁻)²): got NaN; allowed: a number from 0.001 to 10000\n",
         ),
         (
             "--gap",
             "inf",
-            "error: invalid --gap (d₀): got inf; allowed: a finite number\n",
+            "error: invalid --gap (d₀): got inf; allowed: a number from -1e6 to 1e6\n",
         ),
     ] {
         let (code, out, err) = simulate(&[(flag, value)]);
@@ -181,7 +181,9 @@ fn simulate_json_reports_the_orbit_and_its_checks() {
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
     for key in [
         "period_m",
-        "impacts_n",
+        "impacts_per_period",
+        "contacts_in_window",
+        "units",
         "max_tip",
         "energy_imbalance",
         "eigenvector_condition",
@@ -191,7 +193,9 @@ fn simulate_json_reports_the_orbit_and_its_checks() {
     }
     // N = 2 at the Figure 4 parameters settles on the (2, 4) orbit within 300 periods
     assert_eq!(v["period_m"], 2);
-    assert_eq!(v["impacts_n"], 4);
+    assert_eq!(v["impacts_per_period"], 4);
+    // 8 recorded periods of a (2,4) orbit: 16 entries into contact
+    assert_eq!(v["contacts_in_window"], 16);
     // round-off level: the exact per-segment energy integrals close the balance
     assert!(v["energy_imbalance"].as_f64().unwrap() < 1e-12);
     // κ ≥ 1 always; the Figure 4 model's eigenvectors are well conditioned (measured ~1e3)

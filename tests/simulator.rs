@@ -580,3 +580,31 @@ fn a_start_at_rest_on_the_stop_begins_in_contact() {
         "first event: leaving contact"
     );
 }
+
+#[test]
+fn a_grazing_orbit_touches_the_stop_without_entering() {
+    // One undamped mode released at rest with its tip exactly on the stop (d = d₀, ḋ = 0,
+    // pulled away): free flight d(t) = d₀ cos ω₁t returns to touch the stop at every
+    // period 2π/ω₁ with zero velocity. Each touch is a grazing event — recorded, no switch
+    // into contact — at the exact crest time.
+    let gap = 0.4;
+    let m = GalerkinModel::new(GalerkinParams::new(1, 100.0 * k1()).with_gap(gap)).unwrap();
+    let sim = Simulator::new(m).unwrap();
+    let x0 = DVector::from_vec(vec![gap / 2.0, 0.0]);
+    let mut trace = Events::default();
+    // unforced: a "period" is one time unit; 5 units hold 2 crests (2π/ω₁ ≈ 1.79)
+    sim.run(&x0, 5, &mut trace).unwrap();
+    let crest = 2.0 * PI / w1();
+    assert_eq!(trace.events.len(), 2, "{:?}", trace.events);
+    for (j, e) in trace.events.iter().enumerate() {
+        assert!(e.grazing && e.entering, "touch {j}: {e:?}");
+        // located by a Newton step on ḋ from the certified search's last points: the
+        // crest of d₀cos ω₁t is flat to second order, so ~1e-8 in time (√ε of the period)
+        let expected = (j + 1) as f64 * crest;
+        assert!(
+            (e.time - expected).abs() < 1e-6,
+            "touch {j} at {} vs {expected}",
+            e.time
+        );
+    }
+}

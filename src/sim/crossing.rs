@@ -16,6 +16,30 @@
 use super::signal::{Local, Signal, Target};
 use super::Stats;
 
+/// What the search found.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Found {
+    /// g crosses zero at s: the switching surface is passed.
+    Crossing(f64),
+    /// g rises to within its uncertainty of zero at s and turns back: a touch of the
+    /// surface (grazing) that does not pass it.
+    Touch(f64),
+}
+
+/// The first crossing or touch of zero in (from, s_max] (see [`first_crossing`]); a touch
+/// is a local maximum of g within [`Local::noise`] of zero, located by a Newton step on ġ.
+pub fn first_event<S: Signal + ?Sized>(
+    sig: &S,
+    target: Target,
+    from: f64,
+    s_max: f64,
+    h_min: f64,
+    rel_tol: f64,
+    stats: &mut Stats,
+) -> Option<Found> {
+    search(sig, target, from, s_max, h_min, rel_tol, true, stats)
+}
+
 /// The first s in (from, s_max] with g(s) = 0, certified (see the module doc).
 ///
 /// A segment that starts on the surface (after a switch, or at rest on it) has
@@ -33,6 +57,23 @@ pub fn first_crossing<S: Signal + ?Sized>(
     rel_tol: f64,
     stats: &mut Stats,
 ) -> Option<f64> {
+    match search(sig, target, from, s_max, h_min, rel_tol, false, stats) {
+        Some(Found::Crossing(s)) => Some(s),
+        _ => None,
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
+fn search<S: Signal + ?Sized>(
+    sig: &S,
+    target: Target,
+    from: f64,
+    s_max: f64,
+    h_min: f64,
+    rel_tol: f64,
+    touches: bool,
+    stats: &mut Stats,
+) -> Option<Found> {
     let noise = |p: &Local| p.noise();
     let mut s = from;
     let mut p = sig.local(from, target);
@@ -46,7 +87,40 @@ pub fn first_crossing<S: Signal + ?Sized>(
         if target.sign < 0.0 {
             stats.contact_steps += 1;
         }
-        let h = certified_step(&p, s_max - s).max(h_min).min(s_max - s);
+        // With touches reported, a near-zero maximum of g must not be stepped over: the
+        // steps then certify g < −noise, not g < 0, and a rise into the noise band is
+        // followed to its top by a Newton step on ġ.
+        if touches && inside && p.g >= -noise(&p) && p.gd > 0.0 && p.gdd < 0.0 {
+            let top = (s - p.gd / p.gdd).min(s_max);
+            let q = sig.local(top, target);
+            stats.evaluations += 1;
+            if q.g > noise(&q) {
+                // it does cross: the root lies between the last negative point and the top
+                let lo = last_negative.unwrap_or((s, p.g));
+                return Some(Found::Crossing(polish(
+                    sig,
+                    target,
+                    lo,
+                    (top, q.g),
+                    rel_tol,
+                    stats,
+                )));
+            }
+            if q.gd.abs() <= p.gd.abs() && top > s {
+                return Some(Found::Touch(top));
+            }
+        }
+        let certify = if touches {
+            Local {
+                g: p.g + noise(&p),
+                ..p
+            }
+        } else {
+            p
+        };
+        let h = certified_step(&certify, s_max - s)
+            .max(h_min)
+            .min(s_max - s);
         // Monotone probe: if ġ > 0 throughout [s, s + 2h], one evaluation at s + 2h
         // decides the (unique) root there.
         let probe = (2.0 * h).min(s_max - s);
@@ -61,11 +135,26 @@ pub fn first_crossing<S: Signal + ?Sized>(
             // A root in (s, s + step]: unique if the probe's monotonicity held; otherwise
             // only reachable at the h_min floor or at a tangency within round-off.
             let lo = last_negative.or_else(|| negative_point(sig, target, s, step, stats));
-            return Some(match lo {
+            return Some(Found::Crossing(match lo {
                 Some(lo) => polish(sig, target, lo, (s + step, next.g), rel_tol, stats),
                 // no negative value at all: the state left the region at its start
                 None => s + step,
-            });
+            }));
+        }
+        // a touch: g has been certainly negative, rises to within its uncertainty of zero
+        // and turns back inside this step (ġ changes sign)
+        if touches && inside && p.gd > 0.0 && next.gd <= 0.0 && p.g.max(next.g) >= -noise(&next) {
+            let (s0, q) = if p.g >= next.g {
+                (s, p)
+            } else {
+                (s + step, next)
+            };
+            let top = if q.gdd < 0.0 {
+                (s0 - q.gd / q.gdd).clamp(s, s + step)
+            } else {
+                s0
+            };
+            return Some(Found::Touch(top));
         }
         s += step;
         p = next;

@@ -167,13 +167,20 @@ impl<'a> Segment<'a> {
         }
     }
 
-    /// The first switch into the other region in (0, s_max], certified.
-    fn next_switch(&self, s_max: f64, h_min: f64, rel_tol: f64, stats: &mut Stats) -> Option<f64> {
+    /// The first switch into the other region, or touch of the surface, in (0, s_max],
+    /// certified.
+    fn next_switch(
+        &self,
+        s_max: f64,
+        h_min: f64,
+        rel_tol: f64,
+        stats: &mut Stats,
+    ) -> Option<crossing::Found> {
         let surface = Target {
             sign: self.sign,
             level: self.gap,
         };
-        crossing::first_crossing(&self.signal, surface, 0.0, s_max, h_min, rel_tol, stats)
+        crossing::first_event(&self.signal, surface, 0.0, s_max, h_min, rel_tol, stats)
     }
 
     fn state(&self, s: f64) -> DVector<f64> {
@@ -283,7 +290,27 @@ impl Simulator {
             self.model.tip(),
         );
         stats.segments += 1;
-        let crossing = seg.next_switch(horizon, self.h_min(), self.settings.root_tolerance, stats);
+        // a touch of the stop is not an impact: free flight goes on through it
+        let mut from = 0.0;
+        let crossing = loop {
+            let found = crossing::first_event(
+                &seg.signal,
+                Target {
+                    sign: 1.0,
+                    level: self.model.params().gap,
+                },
+                from,
+                horizon,
+                self.h_min(),
+                self.settings.root_tolerance,
+                stats,
+            );
+            match found {
+                Some(crossing::Found::Touch(s)) if s > from => from = s,
+                Some(crossing::Found::Crossing(s)) => break Some(s),
+                _ => break None,
+            }
+        };
         let state = seg.state(crossing.unwrap_or(horizon));
         (crossing, state)
     }
@@ -351,8 +378,12 @@ impl Simulator {
                 };
                 (ahead as f64 * period - clock.offset, true)
             };
-            let crossing =
-                seg.next_switch(horizon, h_min, self.settings.root_tolerance, &mut stats);
+            let found = seg.next_switch(horizon, h_min, self.settings.root_tolerance, &mut stats);
+            let (crossing, touch) = match found {
+                Some(crossing::Found::Crossing(s)) => (Some(s), false),
+                Some(crossing::Found::Touch(s)) => (Some(s), true),
+                None => (None, false),
+            };
             let s_end = crossing.unwrap_or(horizon);
             observer.segment(&SegmentView {
                 sim: self,
@@ -373,7 +404,7 @@ impl Simulator {
                     // tip velocity scale, plus the representation's error) does not enter
                     // the other region.
                     let vscale = 1e-13 * seg.signal.velocity_bound(s) + seg.velocity_floor;
-                    let grazing = v.abs() <= vscale;
+                    let grazing = touch || v.abs() <= vscale;
                     let entering = region == Region::Free;
                     if !grazing && (entering != (v > 0.0)) {
                         return Err(Error::Invariant(format!(

@@ -274,7 +274,9 @@ impl Observer for Dense {
         let dt = seg.start.period / self.per_period as f64;
         // samples on the global grid t = j·dt that fall in [offset, offset + S)
         let mut j = (seg.start.offset / dt).ceil() as i64;
-        loop {
+        // j < per_period: the grid point j = per_period is the next cycle's j = 0 (its
+        // rounded j·dt may fall a hair before T)
+        while j < self.per_period as i64 {
             let s = j as f64 * dt - seg.start.offset;
             if s >= seg.end {
                 break;

@@ -187,7 +187,10 @@ impl TipSignal {
         terms: impl IntoIterator<Item = Term>,
     ) -> Self {
         let (mut pairs, mut reals, mut blocks) = (Vec::new(), Vec::new(), Vec::new());
-        let mut scale0 = forced.norm() + constant.abs() + level_scale;
+        // the negligible size is relative to the signal itself, not to the levels it is
+        // compared with: a gap of 1e14 must not make the transient "negligible"
+        let _ = level_scale;
+        let mut scale0 = forced.norm() + constant.abs();
         for t in terms {
             match t {
                 Term::Pair { a, lambda } => {

@@ -44,15 +44,32 @@ enum Command {
         /// N, the number of Galerkin modes.
         #[arg(long)]
         modes: usize,
-        /// Stop stiffness as k/k₁.
-        #[arg(long, allow_negative_numbers = true)]
+        /// Stop stiffness as k/k₁ (0 to 1e300).
+        #[arg(long, allow_hyphen_values = true)]
         stop_stiffness: f64,
         /// Print JSON.
         #[arg(long)]
         json: bool,
     },
-    /// Simulate the N-mode bilinear model from rest with the forcing of eq (37) (unit tip
-    /// amplitude at resonance), then record contact events and detect periodicity.
+    /// Simulate the paper's forced model (§5.2): the N-mode compliant model (or the
+    /// rigid-impact model) under eq (37)'s forcing; discard a transient, record a window.
+    ///
+    /// Units: non-dimensional beam time; k in k₁ = (β₁⁻)⁴, ω in (β₁⁻)²; lengths (d₀, tip)
+    /// in units of the free tip amplitude at resonance (1 with the corrected eq (37)).
+    ///
+    /// Output fields (--json): period_m — the smallest m ≤ max_period_searched
+    /// (= min(--max-period, record/2)) with ‖x(t₀+mT) − x(t₀)‖∞ < tolerance·‖x(t₀)‖∞ on the
+    /// stroboscopic map at the end of the window, else null; periodicity_residual — the
+    /// smallest such residual (null with fewer than 2 recorded periods); impacts_per_period
+    /// — entries into contact (rigid: impacts) per period m, null when not periodic;
+    /// contacts_in_window — entries in the whole recorded window; events — time, cycle,
+    /// phase (fraction of T), entering, grazing (a touch with zero normal velocity to
+    /// round-off: recorded, no switch), tip_velocity, modal_velocities (η̇ at the event;
+    /// rigid: before and after the impact); max_tip — the certified largest tip
+    /// displacement of the window with its time and tolerance; energy_imbalance — the
+    /// unaccounted part of the exact energy budget of the whole run (compliant);
+    /// eigenvector_condition — the flow is good to about this × ε; units — T, (β₁⁻)², f₁,
+    /// k₁ and the free tip amplitude at ω.
     Simulate {
         #[command(flatten)]
         args: simulate::Args,
@@ -77,7 +94,7 @@ fn emit(text: &str) {
         if e.kind() == std::io::ErrorKind::BrokenPipe {
             std::process::exit(0);
         }
-        eprintln!("error: cannot write to stdout: {e}");
+        let _ = writeln!(std::io::stderr(), "error: cannot write to stdout: {e}");
         std::process::exit(1);
     }
 }
@@ -89,16 +106,41 @@ macro_rules! outln {
     };
 }
 
+/// `eprintln!` that never panics (a full or closed stderr is not worth a crash).
+macro_rules! errln {
+    ($($arg:tt)*) => {{
+        use std::io::Write;
+        let _ = writeln!(std::io::stderr(), $($arg)*);
+    }};
+}
+
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            use clap::error::ErrorKind;
+            if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) {
+                emit(&e.to_string());
+                return ExitCode::SUCCESS;
+            }
+            if e.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
+                let _ = e.print();
+                return ExitCode::from(2);
+            }
+            // one line, naming the flag (clap's first line does)
+            let text = e.to_string();
+            errln!("{}", text.lines().next().unwrap_or("error: bad arguments"));
+            return ExitCode::from(2);
+        }
+    };
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(Failure::BadInput(e)) => {
-            eprintln!("error: {e}");
+            errln!("error: {e}");
             ExitCode::from(2)
         }
         Err(Failure::Other(e)) => {
-            eprintln!("error: {e}");
+            errln!("error: {e}");
             ExitCode::from(1)
         }
     }
@@ -134,8 +176,10 @@ fn run(cli: Cli) -> Result<(), Failure> {
         }
         Command::Scene { name, out, json } => {
             let spec = scene::find(&name)?;
-            let output = spec.run(Resolution::Book, &progress::Bars::default())?;
             let dir = out.unwrap_or_else(|| PathBuf::from("out").join(spec.name()));
+            // an unwritable --out is bad input, found before the computation
+            writable_dir(&dir)?;
+            let output = spec.run(Resolution::Book, &progress::Bars::default())?;
             scene::write(&output, &dir)?;
             if json {
                 let doc = serde_json::json!({
@@ -147,7 +191,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 outln!("{}", serde_json::to_string_pretty(&doc).unwrap_or_default());
             } else {
                 outln!("{}", output.rendered.table);
-                eprintln!("wrote {}", dir.display());
+                errln!("wrote {}", dir.display());
             }
             Ok(())
         }
@@ -161,10 +205,10 @@ fn run(cli: Cli) -> Result<(), Failure> {
             if json {
                 outln!(
                     "{}",
-                    serde_json::to_string_pretty(&report.to_json()).unwrap_or_default()
+                    serde_json::to_string_pretty(&simulate::to_json(&report)).unwrap_or_default()
                 );
             } else {
-                emit(&report.to_text());
+                emit(&simulate::to_text(&report));
             }
             Ok(())
         }
@@ -172,10 +216,34 @@ fn run(cli: Cli) -> Result<(), Failure> {
     }
 }
 
+/// `dir` exists (or is created) and accepts a file.
+fn writable_dir(dir: &std::path::Path) -> Result<(), ParameterError> {
+    let fail = |e: std::io::Error| {
+        ParameterError::new(
+            "--out",
+            dir.display(),
+            &format!("a writable directory ({e})"),
+        )
+    };
+    std::fs::create_dir_all(dir).map_err(fail)?;
+    let probe = dir.join(format!(".probe.{}", std::process::id()));
+    std::fs::write(&probe, b"").map_err(fail)?;
+    let _ = std::fs::remove_file(&probe);
+    Ok(())
+}
+
 fn modes_command(modes: usize, k_over_k1: f64, json: bool) -> Result<(), Failure> {
     error::count_in_range("--modes (N)", modes, galerkin::MAX_MODES)?;
     error::finite_non_negative("--stop-stiffness (k/k₁)", k_over_k1)?;
     let k = k_over_k1 * galerkin::first_modal_stiffness();
+    if !k.is_finite() || k * modes as f64 > f64::MAX / 4.0 {
+        return Err(ParameterError::new(
+            "--stop-stiffness (k/k₁)",
+            k_over_k1,
+            "a finite number ≥ 0 up to 1e300",
+        )
+        .into());
+    }
     let d: Vec<f64> = (1..=modes)
         .map(continuum::modal_stiffness)
         .collect::<Result<_, _>>()?;

@@ -1,0 +1,349 @@
+//! The runs behind `simulate`: the compliant model through the exact simulator, the rigid
+//! model through its impacts; both in chunks of periods (the same chunks with or without
+//! a progress bar, so the numbers never depend on the terminal).
+
+use super::{output, Args, ModelKind, Setup};
+use crate::progress::Bars;
+use impacting_cantilever::error::Error;
+use impacting_cantilever::galerkin::Region;
+use impacting_cantilever::orbit::detect_period;
+use impacting_cantilever::rigid::{Outcome, RigidEvent, RigidImpact};
+use impacting_cantilever::scene::Progress;
+use impacting_cantilever::sim::{
+    Clock, Energy, EnergyBudget, EventView, Observer, SegmentView, Simulator, Strobe, TipMax,
+    TipMaximum,
+};
+use nalgebra::DVector;
+use std::time::Instant;
+
+/// Periods per chunk of a long run (one progress step).
+const CHUNK: u64 = 1000;
+
+/// One event of the recorded window.
+#[derive(Debug, Clone)]
+pub struct EventOut {
+    /// t.
+    pub time: f64,
+    /// The forcing cycle it falls in.
+    pub cycle: i64,
+    /// Its forcing phase, as a fraction of the period in [0, 1).
+    pub phase: f64,
+    /// Entering contact (compliant) or an impact (rigid).
+    pub entering: bool,
+    /// A touch with zero normal velocity (compliant): recorded, no switch.
+    pub grazing: bool,
+    /// Tip velocity at the event (rigid: before the impact).
+    pub tip_velocity: f64,
+    /// Rigid: tip velocity after the impact.
+    pub outgoing: Option<f64>,
+    /// Modal velocities η̇ at the event (rigid: before the impact).
+    pub modal_velocities: Vec<f64>,
+    /// Rigid: modal velocities after the impact.
+    pub modal_after: Option<Vec<f64>>,
+}
+
+/// One dense sample: t, in contact, tip, tip velocity, the state [η; η̇].
+pub type DenseRow = (f64, bool, f64, f64, Vec<f64>);
+
+/// What the command reports.
+pub struct Report {
+    /// The inputs.
+    pub args: Args,
+    /// The model, its law and its start.
+    pub setup: Setup,
+    /// Events of the recorded window.
+    pub events: Vec<EventOut>,
+    /// The smallest period m ≤ `max_period_searched` with a relative strobe residual below
+    /// the tolerance; None if none (or fewer than 2 recorded periods).
+    pub period_m: Option<u64>,
+    /// The smallest residual over m ≤ `max_period_searched` (None: < 2 recorded periods).
+    pub periodicity_residual: Option<f64>,
+    /// min(--max-period, record/2): the largest period tested.
+    pub max_period_searched: usize,
+    /// Entries into contact (impacts) per period, when periodic.
+    pub impacts_per_period: Option<u64>,
+    /// Entries into contact (impacts) in the whole recorded window.
+    pub contacts_in_window: u64,
+    /// The certified maximum of the tip in the window (compliant, with a window).
+    pub max_tip: Option<TipMaximum>,
+    /// Relative energy imbalance of the whole run (compliant).
+    pub energy_imbalance: Option<f64>,
+    /// The larger condition of the two region flows (the flow is good to about this × ε).
+    pub condition: f64,
+    /// How the run ended (rigid: completed, chatter, impact limit).
+    pub outcome: String,
+    /// Where it ended.
+    pub final_clock: Clock,
+    /// The final state.
+    pub final_state: DVector<f64>,
+    /// Dense output of the window (if asked for).
+    pub dense: Vec<DenseRow>,
+    /// Wall time.
+    pub wall_seconds: f64,
+}
+
+/// Dense samples of the whole state on the grid t = cycles·T + j·T/per_period.
+struct ModalDense {
+    per_period: usize,
+    rows: Vec<DenseRow>,
+}
+
+impl Observer for ModalDense {
+    fn needs_period_boundaries(&self) -> bool {
+        true
+    }
+    fn segment(&mut self, seg: &SegmentView) {
+        let dt = seg.start.period / self.per_period as f64;
+        let mut j = (seg.start.offset / dt).ceil() as i64;
+        // j < per_period: j = per_period is the next cycle's j = 0
+        while j < self.per_period as i64 {
+            let s = j as f64 * dt - seg.start.offset;
+            if s >= seg.end {
+                break;
+            }
+            let (d, v) = seg.tip(s);
+            let x = seg.state(s);
+            self.rows.push((
+                seg.start.time() + s,
+                seg.region == Region::Contact,
+                d,
+                v,
+                x.iter().cloned().collect(),
+            ));
+            j += 1;
+        }
+    }
+}
+
+/// Events with the modal velocities.
+#[derive(Default)]
+struct EventLog(Vec<EventOut>);
+
+impl Observer for EventLog {
+    fn event(&mut self, e: &EventView) {
+        let n = e.state.len() / 2;
+        self.0.push(EventOut {
+            time: e.clock.time(),
+            cycle: e.clock.cycles,
+            phase: e.clock.offset / e.clock.period,
+            entering: e.entering,
+            grazing: e.grazing,
+            tip_velocity: e.tip_velocity,
+            outgoing: None,
+            modal_velocities: e.state.rows(n, n).iter().cloned().collect(),
+            modal_after: None,
+        });
+    }
+}
+
+/// The strobe of a window run in chunks: each chunk's first sample repeats the previous
+/// chunk's last.
+fn append_strobe(all: &mut Vec<DVector<f64>>, chunk: Strobe) {
+    let skip = usize::from(!all.is_empty());
+    all.extend(chunk.samples.into_iter().skip(skip).map(|(_, x)| x));
+}
+
+/// Runs the command.
+pub fn run(args: &Args) -> Result<Report, Error> {
+    let setup = super::setup(args)?;
+    output::check_writable(args)?;
+    let started = Instant::now();
+    let bars = Bars::default();
+    let report = match args.model {
+        ModelKind::Compliant => compliant(args, setup, &bars)?,
+        ModelKind::Rigid => rigid(args, setup, &bars)?,
+    };
+    let mut report = report;
+    report.wall_seconds = started.elapsed().as_secs_f64();
+    output::write_files(&report)?;
+    Ok(report)
+}
+
+fn period_search(args: &Args, strobe: &[DVector<f64>]) -> (Option<u64>, Option<f64>, usize) {
+    let max_m = args.max_period.min(args.record as usize / 2);
+    if strobe.len() < 2 || max_m == 0 {
+        return (None, None, max_m);
+    }
+    let (m, r) = detect_period(strobe, args.periodicity_tolerance, max_m);
+    (m, r.is_finite().then_some(r), max_m)
+}
+
+fn compliant(args: &Args, setup: Setup, bars: &Bars) -> Result<Report, Error> {
+    let sim = Simulator::new(setup.model.clone())?;
+    let period = sim.period();
+    let task = bars.task("simulate: periods", args.periods + args.record);
+    let mut x = setup.x0.clone();
+    let mut clock = sim.clock_at_cycle(0);
+    let mut budget: Option<EnergyBudget> = None;
+    let mut add = |b: &EnergyBudget| {
+        budget = Some(budget.map_or(*b, |a| a.then(b)));
+    };
+    // the transient, in chunks
+    let mut left = args.periods;
+    while left > 0 {
+        let chunk = left.min(CHUNK);
+        let mut energy = Energy::default();
+        let end = sim.run_from(&x, clock, chunk, &mut energy)?;
+        add(&energy.budget);
+        (x, clock) = (end.state, end.clock);
+        task.advance(chunk);
+        left -= chunk;
+    }
+    // the recorded window, in chunks
+    let (mut log, mut max_tip) = (EventLog::default(), TipMax::default());
+    let mut dense = ModalDense {
+        per_period: args.dense_per_period,
+        rows: Vec::new(),
+    };
+    let mut strobe_states = Vec::new();
+    let mut left = args.record;
+    while left > 0 {
+        let chunk = left.min(CHUNK);
+        let (mut energy, mut strobe) = (Energy::default(), Strobe::default());
+        let end = if args.dense.is_some() {
+            sim.run_from(
+                &x,
+                clock,
+                chunk,
+                &mut (&mut log, &mut max_tip, &mut energy, &mut strobe, &mut dense),
+            )?
+        } else {
+            sim.run_from(
+                &x,
+                clock,
+                chunk,
+                &mut (&mut log, &mut max_tip, &mut energy, &mut strobe),
+            )?
+        };
+        add(&energy.budget);
+        append_strobe(&mut strobe_states, strobe);
+        (x, clock) = (end.state, end.clock);
+        task.advance(chunk);
+        left -= chunk;
+    }
+    drop(task);
+    let (period_m, periodicity_residual, max_period_searched) = period_search(args, &strobe_states);
+    let last_cycle = clock.cycles;
+    let contacts = |from: i64| {
+        log.0
+            .iter()
+            .filter(|e| e.entering && !e.grazing && e.cycle >= from)
+            .count() as u64
+    };
+    let window_start = last_cycle - args.record as i64;
+    Ok(Report {
+        impacts_per_period: period_m.map(|m| contacts(last_cycle - m as i64)),
+        contacts_in_window: contacts(window_start),
+        events: log.0,
+        period_m,
+        periodicity_residual,
+        max_period_searched,
+        max_tip: max_tip.maximum,
+        energy_imbalance: budget.map(|b| b.relative_imbalance()),
+        condition: sim.condition(),
+        outcome: "completed".into(),
+        final_clock: Clock::at_cycle(period, last_cycle),
+        final_state: x,
+        dense: dense.rows,
+        wall_seconds: 0.0,
+        args: args.clone(),
+        setup,
+    })
+}
+
+fn rigid(args: &Args, setup: Setup, bars: &Bars) -> Result<Report, Error> {
+    let sim = Simulator::new(setup.model.clone())?;
+    let period = sim.period();
+    let condition = sim.flow(Region::Free).condition();
+    let law = setup.law.clone().unwrap_or_default();
+    let model = RigidImpact::new(sim, law)?;
+    let task = bars.task("simulate: periods", args.periods + args.record);
+    let (mut x, mut cycle) = (setup.x0.clone(), 0i64);
+    let mut outcome = Outcome::Completed;
+    let mut final_clock = Clock::at_cycle(period, 0);
+    let mut events = Vec::new();
+    let mut strobe_states = Vec::new();
+    let total = args.periods + args.record;
+    let mut done = 0u64;
+    while done < total && outcome == Outcome::Completed {
+        // the transient in chunks, the window period by period (its strobe)
+        let step = if done < args.periods {
+            (args.periods - done).min(CHUNK)
+        } else {
+            1
+        };
+        let recording = done >= args.periods;
+        if recording && strobe_states.is_empty() {
+            strobe_states.push(x.clone());
+        }
+        let r = model.run_until(
+            &x,
+            Clock::at_cycle(period, cycle),
+            Clock::at_cycle(period, cycle + step as i64),
+        );
+        if recording {
+            events.extend(r.events.iter().filter_map(|e| match e {
+                RigidEvent::Impact {
+                    time,
+                    incoming,
+                    outgoing,
+                    before,
+                    after,
+                } => {
+                    let c = Clock::at_time(period, *time);
+                    Some(EventOut {
+                        time: *time,
+                        cycle: c.cycles,
+                        phase: c.offset / period,
+                        entering: true,
+                        grazing: false,
+                        tip_velocity: *incoming,
+                        outgoing: Some(*outgoing),
+                        modal_velocities: before.clone(),
+                        modal_after: Some(after.clone()),
+                    })
+                }
+                _ => None,
+            }));
+        }
+        outcome = r.outcome;
+        x = r.state;
+        final_clock = r.clock;
+        if outcome == Outcome::Completed {
+            cycle += step as i64;
+            done += step;
+            if recording {
+                strobe_states.push(x.clone());
+            }
+        }
+        task.advance(step);
+    }
+    drop(task);
+    let (period_m, periodicity_residual, max_period_searched) = period_search(args, &strobe_states);
+    let impacts = |from: i64| events.iter().filter(|e| e.cycle >= from).count() as u64;
+    let outcome_text = match outcome {
+        Outcome::Completed => "completed".to_string(),
+        Outcome::Chatter(t) => format!(
+            "stopped at t = {t}: impacts accumulate (chatter) and N > 1 sticking is not implemented"
+        ),
+        Outcome::ImpactLimit => "stopped: more impacts than the policy's limit".to_string(),
+    };
+    Ok(Report {
+        impacts_per_period: period_m.map(|m| impacts(cycle - m as i64)),
+        contacts_in_window: impacts(cycle - args.record as i64),
+        events,
+        period_m,
+        periodicity_residual,
+        max_period_searched,
+        max_tip: None,
+        energy_imbalance: None,
+        condition,
+        outcome: outcome_text,
+        final_clock,
+        final_state: x,
+        dense: Vec::new(),
+        wall_seconds: 0.0,
+        args: args.clone(),
+        setup,
+    })
+}
