@@ -38,6 +38,12 @@ fn simulate(c: &mut Criterion) {
     g.finish();
     let mut g = c.benchmark_group("setup");
     g.bench_function("flows_N20", |b| b.iter(|| Simulator::new(fig6b()).unwrap()));
+    // the start-up of a 400-mode model (24 s in an adversarial report; target ~1 s)
+    g.sample_size(10);
+    let big = problems::figure4(400).model().unwrap();
+    g.bench_function("flows_N400", |b| {
+        b.iter(|| Simulator::new(big.clone()).unwrap())
+    });
     g.finish();
 }
 

@@ -18,10 +18,23 @@ use rayon::prelude::*;
 use std::path::Path;
 use std::time::Instant;
 
+/// How long a build took, for the command line to report (the library prints nothing).
+#[derive(Debug, Clone)]
+pub struct BuildReport {
+    /// Each scene's wall time (s), in the book's order.
+    pub scene_seconds: Vec<(String, f64)>,
+    /// mdBook's own time (s).
+    pub book_seconds: f64,
+    /// The whole build (s).
+    pub total_seconds: f64,
+    /// The book's entry page.
+    pub index: std::path::PathBuf,
+}
+
 /// Regenerates every scene (in parallel) at `resolution` and builds the book at `root`.
 /// The book uses [`Resolution::Book`]; the test suite builds it at [`Resolution::Test`]
 /// to check the pipeline without the full sweeps.
-pub fn build(root: &Path, resolution: Resolution, progress: &dyn Progress) -> Result<()> {
+pub fn build(root: &Path, resolution: Resolution, progress: &dyn Progress) -> Result<BuildReport> {
     if !root.join("book.toml").exists() {
         bail!(
             "no book.toml in '{}': run from the repository root or pass --book-dir",
@@ -46,9 +59,10 @@ pub fn build(root: &Path, resolution: Resolution, progress: &dyn Progress) -> Re
         .collect();
     drop(task);
     let mut outputs = Vec::new();
+    let mut scene_seconds = Vec::new();
     for (spec, run) in scenes.iter().zip(runs) {
         let (out, secs) = run?;
-        eprintln!("scene {:<15} {secs:>8.2} s", spec.name());
+        scene_seconds.push((spec.name().to_string(), secs));
         outputs.push(out);
     }
     scene::write_atomically(
@@ -64,13 +78,12 @@ pub fn build(root: &Path, resolution: Resolution, progress: &dyn Progress) -> Re
         &root.join("assets/math/font"),
         &root.join("build/assets/math/font"),
     )?;
-    eprintln!("book built in {:.2} s", t.elapsed().as_secs_f64());
-    eprintln!(
-        "done in {:.2} s: open {}",
-        started.elapsed().as_secs_f64(),
-        root.join("build").join("index.html").display()
-    );
-    Ok(())
+    Ok(BuildReport {
+        scene_seconds,
+        book_seconds: t.elapsed().as_secs_f64(),
+        total_seconds: started.elapsed().as_secs_f64(),
+        index: root.join("build").join("index.html"),
+    })
 }
 
 /// The landing page's table: each result, the paper's claim, the verdict and its evidence,

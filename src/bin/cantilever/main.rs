@@ -273,8 +273,19 @@ fn modes_command(modes: usize, k_over_k1: f64, json: bool) -> Result<(), Failure
 
 #[cfg(feature = "book")]
 fn book_command(book_dir: &std::path::Path) -> Result<(), Failure> {
-    impacting_cantilever::book::build(book_dir, Resolution::Book, &progress::Bars::default())
-        .map_err(|e| Failure::Other(format!("{e:#}")))
+    let report =
+        impacting_cantilever::book::build(book_dir, Resolution::Book, &progress::Bars::default())
+            .map_err(|e| Failure::Other(format!("{e:#}")))?;
+    for (name, secs) in &report.scene_seconds {
+        errln!("scene {name:<15} {secs:>8.2} s");
+    }
+    errln!("book built in {:.2} s", report.book_seconds);
+    errln!(
+        "done in {:.2} s: open {}",
+        report.total_seconds,
+        report.index.display()
+    );
+    Ok(())
 }
 
 #[cfg(not(feature = "book"))]

@@ -1,6 +1,6 @@
-//! The runs behind `simulate`: the compliant model through the exact simulator, the rigid
-//! model through its impacts; both in chunks of periods (the same chunks with or without
-//! a progress bar, so the numbers never depend on the terminal).
+//! The runs behind `simulate`: the compliant model through the exact simulator (one run for
+//! the transient, one for the window, with a progress ticker that only watches), the rigid
+//! model through its impacts in chunks of periods.
 
 use super::{output, Args, ModelKind, Setup};
 use crate::progress::Bars;
@@ -16,8 +16,28 @@ use impacting_cantilever::sim::{
 use nalgebra::DVector;
 use std::time::Instant;
 
-/// Periods per chunk of a long run (one progress step).
+/// Periods per chunk of a long rigid run (one progress step).
 const CHUNK: u64 = 1000;
+
+/// Reports whole periods as segments pass them: progress without touching the numerics
+/// (it asks for no period boundaries).
+struct Ticker<'a> {
+    task: &'a dyn impacting_cantilever::scene::Task,
+    done: i64,
+}
+
+impl Observer for Ticker<'_> {
+    fn begin(&mut self, _: &Simulator, clock: &Clock, _: &DVector<f64>) {
+        self.done = clock.cycles;
+    }
+    fn segment(&mut self, seg: &SegmentView) {
+        let now = ((seg.start.time() + seg.end) / seg.start.period).floor() as i64;
+        if now > self.done {
+            self.task.advance((now - self.done) as u64);
+            self.done = now;
+        }
+    }
+}
 
 /// One event of the recorded window.
 #[derive(Debug, Clone)]
@@ -136,13 +156,6 @@ impl Observer for EventLog {
     }
 }
 
-/// The strobe of a window run in chunks: each chunk's first sample repeats the previous
-/// chunk's last.
-fn append_strobe(all: &mut Vec<DVector<f64>>, chunk: Strobe) {
-    let skip = usize::from(!all.is_empty());
-    all.extend(chunk.samples.into_iter().skip(skip).map(|(_, x)| x));
-}
-
 /// Runs the command.
 pub fn run(args: &Args) -> Result<Report, Error> {
     let setup = super::setup(args)?;
@@ -178,49 +191,52 @@ fn compliant(args: &Args, setup: Setup, bars: &Bars) -> Result<Report, Error> {
     let mut add = |b: &EnergyBudget| {
         budget = Some(budget.map_or(*b, |a| a.then(b)));
     };
-    // the transient, in chunks
-    let mut left = args.periods;
-    while left > 0 {
-        let chunk = left.min(CHUNK);
-        let mut energy = Energy::default();
-        let end = sim.run_from(&x, clock, chunk, &mut energy)?;
-        add(&energy.budget);
-        (x, clock) = (end.state, end.clock);
-        task.advance(chunk);
-        left -= chunk;
-    }
-    // the recorded window, in chunks
+    let mut ticker = Ticker {
+        task: task.as_ref(),
+        done: 0,
+    };
+    // the transient
+    let mut energy = Energy::default();
+    let end = sim.run_from(&x, clock, args.periods, &mut (&mut energy, &mut ticker))?;
+    add(&energy.budget);
+    (x, clock) = (end.state, end.clock);
+    // the recorded window
     let (mut log, mut max_tip) = (EventLog::default(), TipMax::default());
     let mut dense = ModalDense {
         per_period: args.dense_per_period,
         rows: Vec::new(),
     };
-    let mut strobe_states = Vec::new();
-    let mut left = args.record;
-    while left > 0 {
-        let chunk = left.min(CHUNK);
-        let (mut energy, mut strobe) = (Energy::default(), Strobe::default());
-        let end = if args.dense.is_some() {
-            sim.run_from(
-                &x,
-                clock,
-                chunk,
-                &mut (&mut log, &mut max_tip, &mut energy, &mut strobe, &mut dense),
-            )?
-        } else {
-            sim.run_from(
-                &x,
-                clock,
-                chunk,
-                &mut (&mut log, &mut max_tip, &mut energy, &mut strobe),
-            )?
-        };
-        add(&energy.budget);
-        append_strobe(&mut strobe_states, strobe);
-        (x, clock) = (end.state, end.clock);
-        task.advance(chunk);
-        left -= chunk;
-    }
+    let (mut energy, mut strobe) = (Energy::default(), Strobe::default());
+    let end = if args.dense.is_some() {
+        sim.run_from(
+            &x,
+            clock,
+            args.record,
+            &mut (
+                &mut log,
+                &mut max_tip,
+                &mut energy,
+                &mut strobe,
+                (&mut dense, &mut ticker),
+            ),
+        )?
+    } else {
+        sim.run_from(
+            &x,
+            clock,
+            args.record,
+            &mut (
+                &mut log,
+                &mut max_tip,
+                &mut energy,
+                &mut strobe,
+                &mut ticker,
+            ),
+        )?
+    };
+    add(&energy.budget);
+    let strobe_states = strobe.states();
+    (x, clock) = (end.state, end.clock);
     drop(task);
     let (period_m, periodicity_residual, max_period_searched) = period_search(args, &strobe_states);
     let last_cycle = clock.cycles;
