@@ -52,7 +52,7 @@ pub fn build(root: &Path, resolution: Resolution, progress: &dyn Progress) -> Re
             let out = spec
                 .run(resolution, progress)
                 .with_context(|| format!("scene {}", spec.name()))?;
-            scene::write(&out, &generated.join(spec.name()))?;
+            scene::write(*spec, &out, &generated.join(spec.name()))?;
             task.advance(1);
             Ok((out, t.elapsed().as_secs_f64()))
         })

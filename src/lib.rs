@@ -34,6 +34,7 @@
 //! | [`verification`] | observed orders, Richardson extrapolation and GCI |
 //! | [`numerics`] | Brent's root finder, Gauss–Legendre quadrature, a fast sine–cosine |
 //! | [`golden`] | independent reference values (mpmath roots, Blevins' table) |
+//! | [`provenance`] | version, commit, toolchain, date and resolution of generated numbers |
 //! | [`scene`] | the Scene trait: one result of the paper from parameters to data, key numbers, verdict, plots |
 //! | [`scenes`] | the registry and one folder per result |
 //! | [`render`] | shared plotting and table helpers (no numerics) |
@@ -56,6 +57,7 @@ pub mod golden;
 pub mod numerics;
 pub mod orbit;
 pub mod problems;
+pub mod provenance;
 pub mod render;
 pub mod report;
 pub mod restitution;

@@ -1,23 +1,57 @@
-//! Key numbers of a scene: named values rounded to the significant figures the method
-//! resolves, for `--json`, for the book's tables and for insta snapshots.
+//! Key numbers of a scene as citable values: each float with its uncertainty, how that
+//! uncertainty was obtained, its unit, and the significant figures the method resolves;
+//! integers and labels exact. For `--json`, `cantilever cite`, the book's prose and tables
+//! (by name), and the snapshots.
 
 use serde::Serialize;
-use serde_json::{Map, Value};
+use serde_json::{json, Map, Value};
+
+/// How well a number is known, and how we know.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Uncertainty {
+    /// An absolute bound or estimate (≥ 0), in the number's unit.
+    pub value: f64,
+    /// How it was obtained: a round-off bound, a convergence estimate from a refinement
+    /// study, the grid interval of a sweep, the agreement of two independent methods, a
+    /// certificate…
+    pub basis: String,
+}
+
+impl Uncertainty {
+    /// An uncertainty of `value` (absolute) obtained by `basis`.
+    pub fn new(value: f64, basis: impl Into<String>) -> Self {
+        Self {
+            value: value.abs(),
+            basis: basis.into(),
+        }
+    }
+
+    /// A round-off bound: `relative` of |x|, for the reason given.
+    pub fn round_off(x: f64, relative: f64, why: &str) -> Self {
+        Self::new(x.abs() * relative, format!("round-off bound: {why}"))
+    }
+}
+
+/// A cited float.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Cited {
+    /// The value, rounded to `digits` significant figures.
+    pub value: f64,
+    /// Significant figures kept (never more than the uncertainty supports).
+    pub digits: usize,
+    /// The uncertainty.
+    pub uncertainty: Uncertainty,
+    /// The unit or scale ("" for a pure number).
+    pub unit: String,
+}
 
 /// One key number.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[serde(untagged)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum KeyValue {
     /// An exact integer (mode counts, orbit periods, impact counts).
     Integer(i64),
-    /// A float rounded to `digits` significant figures.
-    Float {
-        /// The rounded value.
-        value: f64,
-        /// Significant figures kept.
-        #[serde(skip)]
-        digits: usize,
-    },
+    /// A float with its uncertainty.
+    Float(Cited),
     /// A label.
     Text(String),
 }
@@ -35,11 +69,32 @@ pub fn format_sig(x: f64, digits: usize) -> String {
     format!("{:.*e}", digits.max(1) - 1, x)
 }
 
+/// The significant figures of `x` down to the leading digit of its uncertainty `u` (the
+/// convention "value ± u" with the last digit at u's place; at least 1, at most 15).
+pub fn supported_digits(x: f64, u: f64) -> usize {
+    if u <= 0.0 || x == 0.0 || !x.is_finite() {
+        return 15;
+    }
+    let d = x.abs().log10().floor() - u.log10().floor() + 1.0;
+    d.clamp(1.0, 15.0) as usize
+}
+
 impl std::fmt::Display for KeyValue {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             KeyValue::Integer(i) => write!(f, "{i}"),
-            KeyValue::Float { value, digits } => write!(f, "{}", format_sig(*value, *digits)),
+            KeyValue::Float(c) => {
+                write!(f, "{}", format_sig(c.value, c.digits))?;
+                if c.uncertainty.value > 0.0 {
+                    write!(f, " ± {}", format_sig(c.uncertainty.value, 1))?;
+                } else {
+                    write!(f, " (exact)")?;
+                }
+                if !c.unit.is_empty() {
+                    write!(f, " {}", c.unit)?;
+                }
+                Ok(())
+            }
             KeyValue::Text(s) => write!(f, "{s}"),
         }
     }
@@ -50,11 +105,28 @@ impl std::fmt::Display for KeyValue {
 pub struct KeyNumbers(pub Vec<(String, KeyValue)>);
 
 impl KeyNumbers {
-    /// Adds a float kept to `digits` significant figures.
-    pub fn float(&mut self, name: impl Into<String>, value: f64, digits: usize) {
-        let value = round_sig(value, digits);
-        self.0
-            .push((name.into(), KeyValue::Float { value, digits }));
+    /// Adds a float kept to `digits` significant figures (fewer if its uncertainty does not
+    /// support them), with its uncertainty and unit.
+    pub fn cited(
+        &mut self,
+        name: impl Into<String>,
+        value: f64,
+        digits: usize,
+        uncertainty: Uncertainty,
+        unit: &str,
+    ) {
+        let digits = digits
+            .min(supported_digits(value, uncertainty.value))
+            .max(1);
+        self.0.push((
+            name.into(),
+            KeyValue::Float(Cited {
+                value: round_sig(value, digits),
+                digits,
+                uncertainty,
+                unit: unit.to_string(),
+            }),
+        ));
     }
 
     /// Adds an integer.
@@ -67,19 +139,32 @@ impl KeyNumbers {
         self.0.push((name.into(), KeyValue::Text(value.into())));
     }
 
-    /// `name = value` lines: the snapshot format.
+    /// The number called `name`.
+    pub fn get(&self, name: &str) -> Option<&KeyValue> {
+        self.0.iter().find(|(k, _)| k == name).map(|(_, v)| v)
+    }
+
+    /// `name = value ± uncertainty unit` lines: the snapshot format (the uncertainty to one
+    /// figure, so a last-digit change of an estimate does not show).
     pub fn to_snapshot(&self) -> String {
         self.0.iter().map(|(k, v)| format!("{k} = {v}\n")).collect()
     }
 
-    /// A JSON object in insertion order.
+    /// A JSON object in insertion order: each entry {"value": …} for integers and labels,
+    /// {"value", "uncertainty", "uncertainty_basis", "unit", "digits"} for floats.
     pub fn to_json(&self) -> Value {
         let mut m = Map::new();
         for (k, v) in &self.0 {
             let v = match v {
-                KeyValue::Integer(i) => Value::from(*i),
-                KeyValue::Float { value, .. } => Value::from(*value),
-                KeyValue::Text(s) => Value::from(s.clone()),
+                KeyValue::Integer(i) => json!({ "value": i }),
+                KeyValue::Text(s) => json!({ "value": s }),
+                KeyValue::Float(c) => json!({
+                    "value": c.value,
+                    "uncertainty": c.uncertainty.value,
+                    "uncertainty_basis": c.uncertainty.basis,
+                    "unit": c.unit,
+                    "digits": c.digits,
+                }),
             };
             m.insert(k.clone(), v);
         }
@@ -96,5 +181,15 @@ mod tests {
         assert_eq!(format_sig(1234.5678, 3), "1.23e3");
         assert_eq!(format_sig(0.00012345, 2), "1.2e-4");
         assert_eq!(round_sig(39.27467, 4), 39.27);
+    }
+
+    #[test]
+    fn digits_never_exceed_what_the_uncertainty_supports() {
+        // 1.2345678 ± 3e-4: the last digit kept is at the 1e-4 place, uncertain by 3
+        assert_eq!(supported_digits(1.2345678, 3e-4), 5);
+        let mut k = KeyNumbers::default();
+        k.cited("x", 1.2345678, 12, Uncertainty::new(3e-4, "test"), "m");
+        assert_eq!(k.to_snapshot(), "x = 1.2346e0 ± 3e-4 m\n");
+        assert_eq!(k.to_json()["x"]["digits"], 5);
     }
 }

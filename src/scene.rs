@@ -7,6 +7,7 @@
 //! Rendering is separate and does no numerics. Running one scene runs nothing else.
 
 use crate::error::Error;
+use crate::provenance::Provenance;
 use crate::render::RenderError;
 use crate::report::KeyNumbers;
 use serde::Serialize;
@@ -15,6 +16,7 @@ use std::path::Path;
 /// How much work a scene does: the book's full resolution, or a reduced one for tests.
 /// Scenes whose full resolution is already cheap use it for both.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Resolution {
     /// As in the book.
     Book,
@@ -116,6 +118,8 @@ pub trait Scene: Sync {
     const SUMMARY: &'static str;
     /// The paper's claim, in one sentence (markdown; "—" for a methods result).
     const CLAIM: &'static str;
+    /// How the numbers are computed and verified, in a sentence or two (for citations).
+    const METHOD: &'static str;
     /// Its chapter in the book (a file under `book/src/`).
     const CHAPTER: &'static str;
     /// The parameters.
@@ -145,6 +149,8 @@ pub struct SceneOutput {
     pub data: serde_json::Value,
     /// Plots and tables.
     pub rendered: Rendered,
+    /// Where the numbers come from.
+    pub provenance: Provenance,
 }
 
 /// A scene as the registry holds it (object-safe).
@@ -159,6 +165,8 @@ pub trait Entry: Sync {
     fn claim(&self) -> &'static str;
     /// [`Scene::CHAPTER`].
     fn chapter(&self) -> &'static str;
+    /// [`Scene::METHOD`].
+    fn method(&self) -> &'static str;
     /// Computes, picks the key numbers and the verdict, renders.
     fn run(&self, resolution: Resolution, progress: &dyn Progress) -> Result<SceneOutput, Error>;
 }
@@ -179,7 +187,14 @@ impl<S: Scene> Entry for S {
     fn chapter(&self) -> &'static str {
         S::CHAPTER
     }
+    fn method(&self) -> &'static str {
+        S::METHOD
+    }
     fn run(&self, resolution: Resolution, progress: &dyn Progress) -> Result<SceneOutput, Error> {
+        let provenance = Provenance::now(match resolution {
+            Resolution::Book => "book",
+            Resolution::Test => "test",
+        });
         let data = S::compute(&S::params(resolution), progress)?;
         let json = serde_json::to_value(&data)
             .map_err(|e| Error::Unsupported(format!("scene {} data: {e}", S::NAME)))?;
@@ -188,6 +203,7 @@ impl<S: Scene> Entry for S {
             verdict: S::verdict(&data),
             rendered: S::render(&data)?,
             data: json,
+            provenance,
         })
     }
 }
@@ -227,9 +243,25 @@ pub fn write_atomically(path: &Path, text: &str) -> Result<(), Error> {
     })
 }
 
-/// Writes `plot.svg`, `table.md` (and any further tables), `data.json`, `key_numbers.json`
-/// and `verdict.json` into `dir`, each atomically.
-pub fn write(out: &SceneOutput, dir: &Path) -> Result<(), Error> {
+/// The key numbers as a citable document: the scene, the paper's claim, the method, the
+/// provenance, the verdict and every number with its uncertainty (the shape of
+/// `key_numbers.json` and of `cantilever scene NAME --json`).
+pub fn key_numbers_document(spec: &dyn Entry, out: &SceneOutput) -> serde_json::Value {
+    serde_json::json!({
+        "scene": spec.name(),
+        "paper": spec.paper(),
+        "claim": spec.claim(),
+        "method": spec.method(),
+        "provenance": out.provenance,
+        "verdict": out.verdict,
+        "key_numbers": out.key_numbers.to_json(),
+    })
+}
+
+/// Writes `plot.svg`, `table.md` (and any further tables), `data.json` (with its
+/// provenance), `key_numbers.json` ([`key_numbers_document`]) and `verdict.json` into
+/// `dir`, each atomically.
+pub fn write(spec: &dyn Entry, out: &SceneOutput, dir: &Path) -> Result<(), Error> {
     std::fs::create_dir_all(dir).map_err(|source| Error::Io {
         path: dir.display().to_string(),
         source,
@@ -238,10 +270,17 @@ pub fn write(out: &SceneOutput, dir: &Path) -> Result<(), Error> {
     let mut files = vec![
         ("plot.svg".to_string(), out.rendered.svg.clone()),
         ("table.md".to_string(), out.rendered.table.clone()),
-        ("data.json".to_string(), json(&out.data)),
+        (
+            "data.json".to_string(),
+            json(&serde_json::json!({
+                "scene": spec.name(),
+                "provenance": out.provenance,
+                "data": out.data,
+            })),
+        ),
         (
             "key_numbers.json".to_string(),
-            json(&out.key_numbers.to_json()),
+            json(&key_numbers_document(spec, out)),
         ),
         (
             "verdict.json".to_string(),

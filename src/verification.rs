@@ -10,6 +10,30 @@ pub fn fitted_slope(x: &[f64], y: &[f64]) -> f64 {
     sxy / sxx
 }
 
+/// Least-squares slope of y against x and its standard error
+/// √(Σr²/(n − 2) / Σ(x − x̄)²) (0 for fewer than 3 points).
+pub fn fitted_slope_with_error(x: &[f64], y: &[f64]) -> (f64, f64) {
+    let slope = fitted_slope(x, y);
+    let n = x.len();
+    if n < 3 {
+        return (slope, 0.0);
+    }
+    let (mx, my) = (
+        x.iter().sum::<f64>() / n as f64,
+        y.iter().sum::<f64>() / n as f64,
+    );
+    let sxx: f64 = x.iter().map(|a| (a - mx) * (a - mx)).sum();
+    let rss: f64 = x
+        .iter()
+        .zip(y)
+        .map(|(a, b)| {
+            let r = b - (my + slope * (a - mx));
+            r * r
+        })
+        .sum();
+    (slope, (rss / (n - 2) as f64 / sxx).sqrt())
+}
+
 /// The observed order of an error e(h) ∝ h^p: the least-squares slope of log e against
 /// log h over the points with e > 0.
 pub fn observed_order(h: &[f64], error: &[f64]) -> f64 {

@@ -74,7 +74,7 @@ fn fig2_json_prints_the_table() {
     assert_eq!(v["scene"], "fig2");
     let k = &v["key_numbers"];
     // N = 1: λ₁ = k₁ + k exactly, so at k = 100 k₁ it is 101 k₁ = 1248.598700 (10 figures)
-    assert_eq!(k["N=1 k/k1=100 i=1 lambda"], 1248.5987);
+    assert_eq!(k["N=1 k/k1=100 i=1 lambda"]["value"], 1248.5987);
     for f in ["plot.svg", "table.md", "data.json", "key_numbers.json"] {
         assert!(dir.join(f).exists(), "{f} written");
     }

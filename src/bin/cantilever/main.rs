@@ -180,14 +180,9 @@ fn run(cli: Cli) -> Result<(), Failure> {
             // an unwritable --out is bad input, found before the computation
             writable_dir(&dir)?;
             let output = spec.run(Resolution::Book, &progress::Bars::default())?;
-            scene::write(&output, &dir)?;
+            scene::write(spec, &output, &dir)?;
             if json {
-                let doc = serde_json::json!({
-                    "scene": spec.name(),
-                    "paper": spec.paper(),
-                    "verdict": output.verdict,
-                    "key_numbers": output.key_numbers.to_json(),
-                });
+                let doc = scene::key_numbers_document(spec, &output);
                 outln!("{}", serde_json::to_string_pretty(&doc).unwrap_or_default());
             } else {
                 outln!("{}", output.rendered.table);

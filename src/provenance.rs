@@ -1,0 +1,89 @@
+//! Where a generated number comes from: the crate's version, the git commit it was built
+//! from (and whether the tree had uncommitted changes), the compiler, the date, the
+//! resolution. Recorded in every scene's data.json and key_numbers.json and in the footer
+//! of every book page.
+
+use serde::Serialize;
+
+/// The provenance of a run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Provenance {
+    /// The crate's version.
+    pub version: &'static str,
+    /// The git commit of the build ("unknown" outside a repository).
+    pub commit: &'static str,
+    /// Whether tracked files differed from that commit ("true", "false" or "unknown").
+    pub dirty: &'static str,
+    /// The compiler.
+    pub toolchain: &'static str,
+    /// When the numbers were computed (UTC, ISO 8601).
+    pub date: String,
+    /// The resolution ("book" or "test").
+    pub resolution: String,
+}
+
+impl Provenance {
+    /// The provenance of a run now, at `resolution`.
+    pub fn now(resolution: &str) -> Self {
+        Self {
+            version: env!("CARGO_PKG_VERSION"),
+            commit: env!("CANTILEVER_GIT_COMMIT"),
+            dirty: env!("CANTILEVER_GIT_DIRTY"),
+            toolchain: env!("CANTILEVER_TOOLCHAIN"),
+            date: utc_now(),
+            resolution: resolution.to_string(),
+        }
+    }
+
+    /// One line for a page footer or a citation.
+    pub fn line(&self) -> String {
+        let dirty = if self.dirty == "true" {
+            " (with uncommitted changes)"
+        } else {
+            ""
+        };
+        let commit = if self.commit.len() >= 12 {
+            &self.commit[..12]
+        } else {
+            self.commit
+        };
+        format!(
+            "impacting-cantilever {} (commit {commit}{dirty}), {}, {} resolution, {}",
+            self.version, self.toolchain, self.resolution, self.date
+        )
+    }
+}
+
+/// The current UTC time as `YYYY-MM-DDThh:mm:ssZ` (days-to-civil, Hinnant's algorithm).
+pub fn utc_now() -> String {
+    let secs = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_secs() as i64)
+        .unwrap_or(0);
+    let (days, rem) = (secs.div_euclid(86_400), secs.rem_euclid(86_400));
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let day = doy - (153 * mp + 2) / 5 + 1;
+    let month = if mp < 10 { mp + 3 } else { mp - 9 };
+    let year = yoe + era * 400 + i64::from(month <= 2);
+    format!(
+        "{year:04}-{month:02}-{day:02}T{:02}:{:02}:{:02}Z",
+        rem / 3600,
+        rem % 3600 / 60,
+        rem % 60
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn the_date_is_well_formed() {
+        let d = super::utc_now();
+        assert_eq!(d.len(), 20, "{d}");
+        assert!(d.starts_with("20") && d.ends_with('Z'));
+    }
+}
