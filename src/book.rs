@@ -7,6 +7,8 @@
 //! Modern Math font in `book/assets/math/` make it look right offline. No page loads
 //! anything from a CDN.
 
+use crate::provenance::Provenance;
+use crate::report::{pretty, KeyNumbers, KeyValue};
 use crate::scene::{self, Entry, Progress, Resolution, SceneOutput};
 use anyhow::{bail, Context, Result};
 use mdbook_driver::MDBook;
@@ -15,6 +17,7 @@ use mdbook_preprocessor::{Preprocessor, PreprocessorContext};
 use pulldown_latex::config::DisplayMode;
 use pulldown_latex::{push_mathml, Parser, RenderConfig, Storage};
 use rayon::prelude::*;
+use std::collections::HashMap;
 use std::path::Path;
 use std::time::Instant;
 
@@ -70,7 +73,23 @@ pub fn build(root: &Path, resolution: Resolution, progress: &dyn Progress) -> Re
         &summary_table(scenes, &outputs),
     )?;
     let t = Instant::now();
+    let numbers = NumbersPreprocessor {
+        numbers: scenes
+            .iter()
+            .zip(&outputs)
+            .map(|(spec, out)| (spec.name().to_string(), out.key_numbers.clone()))
+            .collect(),
+        chapters: scenes
+            .iter()
+            .map(|spec| (spec.chapter().to_string(), spec.name().to_string()))
+            .collect(),
+        provenance: outputs
+            .first()
+            .map(|o| o.provenance.clone())
+            .unwrap_or_else(|| Provenance::now("book")),
+    };
     let mut book = MDBook::load(root).context("loading the book")?;
+    book.with_preprocessor(numbers);
     book.with_preprocessor(MathPreprocessor);
     book.build().context("building the book")?;
     // The stylesheet refers to its fonts by relative path; mdBook copies only the CSS.
@@ -86,19 +105,32 @@ pub fn build(root: &Path, resolution: Resolution, progress: &dyn Progress) -> Re
     })
 }
 
-/// The landing page's table: each result, the paper's claim, the verdict and its evidence,
-/// with a link to the chapter.
+/// The landing page's summary: for each result, its verdict, the paper's claim, our
+/// headline numbers with their uncertainties, the evidence, and links to the chapter and the
+/// data. One block per result (a table this wide would hide columns).
 pub fn summary_table(scenes: &[&dyn Entry], outputs: &[SceneOutput]) -> String {
-    let mut s = String::from("| result | verdict | the paper's claim | our evidence |\n");
-    s.push_str("|---|---|---|---|\n");
+    let mut s = String::new();
     for (spec, out) in scenes.iter().zip(outputs) {
+        let numbers: Vec<String> = spec
+            .headline()
+            .iter()
+            .filter_map(|(label, key)| {
+                out.key_numbers
+                    .get(key)
+                    .map(|v| format!("{label}: {}", v.prose(true)))
+            })
+            .collect();
+        let name = spec.name();
         s.push_str(&format!(
-            "| [{}]({}) ({}) | **{}** | {} | {} |\n",
-            spec.name(),
+            "<div class=\"result\">\n\n**[{name}]({})** ({}) — **{}**\n\n\
+             *The paper:* {}\n\n*Our numbers:* {}.\n\n*Evidence:* {}.\n\n\
+             Data: [data.json](generated/{name}/data.json) · \
+             [key numbers](generated/{name}/key_numbers.json)\n\n</div>\n\n",
             spec.chapter(),
             spec.paper(),
             out.verdict.outcome,
             spec.claim(),
+            numbers.join("; "),
             out.verdict.evidence
         ));
     }
@@ -113,6 +145,115 @@ fn copy_dir(from: &Path, to: &Path) -> Result<()> {
             .with_context(|| format!("copying {}", entry.path().display()))?;
     }
     Ok(())
+}
+
+/// Puts generated numbers into the prose, and a provenance footer under every page.
+///
+/// In a chapter, `{{n SCENE/KEY}}` becomes the key number's value (to its significant
+/// figures), `{{pm SCENE/KEY}}` the value ± its uncertainty with its unit, and
+/// `{{u SCENE/KEY}}` the uncertainty alone. An unknown scene or key fails the build.
+pub struct NumbersPreprocessor {
+    /// Key numbers by scene.
+    pub numbers: HashMap<String, KeyNumbers>,
+    /// Scene by chapter file.
+    pub chapters: HashMap<String, String>,
+    /// Where the numbers come from.
+    pub provenance: Provenance,
+}
+
+impl NumbersPreprocessor {
+    fn lookup(&self, reference: &str) -> Result<&KeyValue> {
+        let (scene, key) = reference
+            .split_once('/')
+            .ok_or_else(|| anyhow::anyhow!("`{reference}`: write SCENE/KEY"))?;
+        let numbers = self
+            .numbers
+            .get(scene.trim())
+            .ok_or_else(|| anyhow::anyhow!("unknown scene `{scene}` in `{reference}`"))?;
+        numbers
+            .get(key.trim())
+            .ok_or_else(|| anyhow::anyhow!("unknown key `{key}` of scene `{scene}`"))
+    }
+
+    /// Replaces every reference in `text`.
+    pub fn expand(&self, text: &str) -> Result<String> {
+        let mut out = String::with_capacity(text.len());
+        let mut rest = text;
+        while let Some(start) = rest.find("{{") {
+            let tail = &rest[start + 2..];
+            let Some((kind, after)) = ["n ", "pm ", "u "]
+                .iter()
+                .find_map(|k| tail.strip_prefix(k).map(|a| (k.trim(), a)))
+            else {
+                out.push_str(&rest[..start + 2]);
+                rest = tail;
+                continue;
+            };
+            let end = after
+                .find("}}")
+                .ok_or_else(|| anyhow::anyhow!("unclosed {{{{{kind} …"))?;
+            out.push_str(&rest[..start]);
+            let value = self.lookup(&after[..end])?;
+            out.push_str(&match (kind, value) {
+                ("u", KeyValue::Float(c)) => pretty(c.uncertainty.value, 1),
+                ("pm", v) => v.prose(true),
+                (_, v) => v.prose(false),
+            });
+            rest = &after[end + 2..];
+        }
+        out.push_str(rest);
+        Ok(out)
+    }
+
+    /// The footer of a page: provenance, and the data of its scene if it has one.
+    pub fn footer(&self, chapter: &str) -> String {
+        let mut s = format!(
+            "\n\n---\n\n<div class=\"provenance\">\n\nNumbers on this page were generated by {}.",
+            self.provenance.line()
+        );
+        if let Some(scene) = self.chapters.get(chapter) {
+            s.push_str(&format!(
+                " Data: [data.json](generated/{scene}/data.json) · [key numbers with their \
+                 uncertainties](generated/{scene}/key_numbers.json) · `cantilever cite {scene}`."
+            ));
+        }
+        s.push_str("\n\n</div>\n");
+        s
+    }
+}
+
+impl Preprocessor for NumbersPreprocessor {
+    fn name(&self) -> &str {
+        "numbers"
+    }
+
+    fn run(
+        &self,
+        _: &PreprocessorContext,
+        mut book: Book,
+    ) -> mdbook_preprocessor::errors::Result<Book> {
+        let mut failure = None;
+        book.for_each_mut(|item| {
+            if let BookItem::Chapter(ch) = item {
+                let file = ch
+                    .path
+                    .as_ref()
+                    .and_then(|p| p.file_name())
+                    .map(|f| f.to_string_lossy().into_owned())
+                    .unwrap_or_default();
+                match self.expand(&ch.content) {
+                    Ok(c) => ch.content = c + &self.footer(&file),
+                    Err(e) => {
+                        failure.get_or_insert(anyhow::anyhow!("chapter '{}': {e}", ch.name));
+                    }
+                }
+            }
+        });
+        match failure {
+            Some(e) => Err(e),
+            None => Ok(book),
+        }
+    }
 }
 
 /// Converts `$…$` (inline) and `$$…$$` (display) to MathML, outside code.
@@ -262,6 +403,34 @@ pub fn convert_math(markdown: &str) -> Result<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn numbers_are_expanded_by_name_and_unknown_names_fail() {
+        let mut k = KeyNumbers::default();
+        k.cited(
+            "x",
+            1.23456,
+            4,
+            crate::report::Uncertainty::new(3e-4, "t"),
+            "T",
+        );
+        k.integer("n", 7);
+        let p = NumbersPreprocessor {
+            numbers: [("s".to_string(), k)].into_iter().collect(),
+            chapters: HashMap::new(),
+            provenance: Provenance::now("test"),
+        };
+        assert_eq!(p.expand("a {{n s/x}} b").unwrap(), "a 1.235 b");
+        assert_eq!(p.expand("{{pm s/x}}").unwrap(), "1.235 ± 3 × 10⁻⁴ T");
+        assert_eq!(
+            p.expand("{{n s/n}} {{#include x}}").unwrap(),
+            "7 {{#include x}}"
+        );
+        assert!(p.expand("{{n s/y}}").is_err());
+        assert!(p.expand("{{n t/x}}").is_err());
+        assert_eq!(pretty(3.6e-16, 2), "3.6 × 10⁻¹⁶");
+        assert_eq!(pretty(1e-9, 1), "10⁻⁹");
+    }
 
     #[test]
     fn math_becomes_mathml_and_code_is_left_alone() {

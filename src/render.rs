@@ -2,6 +2,7 @@
 //! which writes text as SVG `<text>` and so needs no system fonts) and markdown tables.
 //! No numerics here.
 
+use plotters::coord::ranged1d::{Ranged, ValueFormatter};
 use plotters::prelude::*;
 
 /// Plot size in pixels (the book scales SVGs to the page width).
@@ -17,6 +18,33 @@ pub fn drawing<E: std::fmt::Debug>(e: E) -> RenderError {
     RenderError(format!("{e:?}"))
 }
 
+/// Tick labels (px as drawn; the 1000 px plots are shown at about 0.7 scale in the book,
+/// so 16 px reads as about 11 px).
+pub const LABEL_FONT: (&str, u32) = ("sans-serif", 16);
+/// Axis descriptions.
+pub const AXIS_FONT: (&str, u32) = ("sans-serif", 18);
+
+/// Draws the mesh of `chart` with the book's label sizes and the given axis descriptions.
+pub fn mesh<'a, DB, X, Y>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
+    x_desc: &str,
+    y_desc: &str,
+) -> Result<(), RenderError>
+where
+    DB: DrawingBackend + 'a,
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .label_style(LABEL_FONT)
+        .axis_desc_style(AXIS_FONT)
+        .draw()
+        .map_err(drawing)
+}
+
 /// Draws the series labels of `chart` in a framed, half-transparent box at `position`.
 pub fn draw_legend<'a, DB, CT>(
     chart: &mut ChartContext<'a, DB, CT>,
@@ -29,6 +57,7 @@ where
     chart
         .configure_series_labels()
         .position(position)
+        .label_font(LABEL_FONT)
         .background_style(WHITE.mix(0.8))
         .border_style(BLACK)
         .draw()

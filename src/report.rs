@@ -79,6 +79,70 @@ pub fn supported_digits(x: f64, u: f64) -> usize {
     d.clamp(1.0, 15.0) as usize
 }
 
+/// x to `digits` significant figures for prose: plain for moderate magnitudes, a × 10ⁿ
+/// beyond.
+pub fn pretty(x: f64, digits: usize) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return x.to_string();
+    }
+    let e = x.abs().log10().floor() as i32;
+    if (-3..6).contains(&e) {
+        let decimals = (digits as i32 - 1 - e).max(0) as usize;
+        return format!("{x:.decimals$}");
+    }
+    let mantissa = x / 10f64.powi(e);
+    let superscript: String = e
+        .to_string()
+        .chars()
+        .map(|c| match c {
+            '-' => '⁻',
+            '0' => '⁰',
+            '1' => '¹',
+            '2' => '²',
+            '3' => '³',
+            '4' => '⁴',
+            '5' => '⁵',
+            '6' => '⁶',
+            '7' => '⁷',
+            '8' => '⁸',
+            _ => '⁹',
+        })
+        .collect();
+    if digits <= 1 && (mantissa - 1.0).abs() < 1e-12 {
+        format!("10{superscript}")
+    } else {
+        format!("{:.*} × 10{superscript}", digits.max(1) - 1, mantissa)
+    }
+}
+
+impl KeyValue {
+    /// The value for prose: the number to its figures (with ± its uncertainty and its unit
+    /// if `with_uncertainty`), an integer, or a label.
+    pub fn prose(&self, with_uncertainty: bool) -> String {
+        match self {
+            KeyValue::Integer(i) => i.to_string(),
+            KeyValue::Text(t) => t.clone(),
+            KeyValue::Float(c) if !with_uncertainty => pretty(c.value, c.digits),
+            KeyValue::Float(c) => {
+                let unit = if c.unit.is_empty() {
+                    String::new()
+                } else {
+                    format!(" {}", c.unit)
+                };
+                if c.uncertainty.value > 0.0 {
+                    format!(
+                        "{} ± {}{unit}",
+                        pretty(c.value, c.digits),
+                        pretty(c.uncertainty.value, 1)
+                    )
+                } else {
+                    format!("{}{unit}", pretty(c.value, c.digits))
+                }
+            }
+        }
+    }
+}
+
 impl std::fmt::Display for KeyValue {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {

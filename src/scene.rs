@@ -120,6 +120,9 @@ pub trait Scene: Sync {
     const CLAIM: &'static str;
     /// How the numbers are computed and verified, in a sentence or two (for citations).
     const METHOD: &'static str;
+    /// The key numbers that sum the result up, as (label, key) (shown on the book's landing
+    /// page).
+    const HEADLINE: &'static [(&'static str, &'static str)];
     /// Its chapter in the book (a file under `book/src/`).
     const CHAPTER: &'static str;
     /// The parameters.
@@ -167,6 +170,8 @@ pub trait Entry: Sync {
     fn chapter(&self) -> &'static str;
     /// [`Scene::METHOD`].
     fn method(&self) -> &'static str;
+    /// [`Scene::HEADLINE`].
+    fn headline(&self) -> &'static [(&'static str, &'static str)];
     /// Computes, picks the key numbers and the verdict, renders.
     fn run(&self, resolution: Resolution, progress: &dyn Progress) -> Result<SceneOutput, Error>;
 }
@@ -189,6 +194,9 @@ impl<S: Scene> Entry for S {
     }
     fn method(&self) -> &'static str {
         S::METHOD
+    }
+    fn headline(&self) -> &'static [(&'static str, &'static str)] {
+        S::HEADLINE
     }
     fn run(&self, resolution: Resolution, progress: &dyn Progress) -> Result<SceneOutput, Error> {
         let provenance = Provenance::now(match resolution {

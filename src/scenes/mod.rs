@@ -19,6 +19,7 @@ macro_rules! registry {
 registry! {
     spectrum::Spectrum,
     fig2::Fig2,
+    restitution::RestitutionLaws,
     fig3abc::Fig3abc,
     fig3d::Fig3d,
     fig4::Fig4,

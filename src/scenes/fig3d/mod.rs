@@ -169,6 +169,7 @@ impl Scene for Fig3d {
         "The post-impact velocity profile of the rigid-limit law does not converge as $N \\to \\infty$.";
     const CHAPTER: &'static str = "fig3d.md";
     const METHOD: &'static str = "the post-impact modal velocities −[R]e₁ of eq (30) in closed form for [R]_N (eq 29) and [R]_C (eq 12, equally spaced points), the profile summed over the modes on 801 points; L² norms exactly from the orthonormal modes";
+    const HEADLINE: &'static [(&'static str, &'static str)] = &[("sup distance from the pre-impact profile, N = 100", "stiffness-limit N=100 max_distance_from_phi1"), ("L² distance, N = 100", "stiffness-limit N=100 l2_distance_from_phi1")];
     type Params = Fig3dParams;
     type Data = Fig3dData;
 
@@ -185,6 +186,11 @@ impl Scene for Fig3d {
         // sums of O(N) terms of size O(1): round-off ~1e-13
         let sums = || Uncertainty::new(1e-13, "round-off of a sum of N modal terms");
         let ds = 1.0 / (d.params.samples - 1) as f64;
+        if let Ok(phi) = crate::continuum::free_mode(1) {
+            for &s in &d.params.probes {
+                k.cited(format!("phi1({s})"), phi.value(s), 8, sums(), "");
+            }
+        }
         for p in &d.profiles {
             let key = format!("{} N={}", p.law, p.modes);
             if let Some(e) = &p.error {

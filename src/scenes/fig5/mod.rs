@@ -442,6 +442,7 @@ impl Scene for Fig5 {
     const CLAIM: &'static str = "All truncations agree for $k \\lesssim k_1$; they depend on $N$ from about $k_2 \\approx 39.3k_1$; $N = 3$ captures the qualitative features.";
     const CHAPTER: &'static str = "fig5.md";
     const METHOD: &'static str = "brute-force bifurcation diagrams: at each of 200 log-spaced k and for 8 starts (rest and 7 seeded random states) the N-mode compliant model is simulated exactly for 1000 periods, then 50 are recorded; the impact velocities of settled orbits (stroboscopic residual < 1e-9) on the impact section d = d₀, ḋ > 0; the rigid limit of N = 1 (Newton's law, r = 1) by the rigid-impact model";
+    const HEADLINE: &'static [(&'static str, &'static str)] = &[("spread of the impact velocities at k = k₁", "velocity spread at smallest k"), ("first k where N = 10 and N = 1 differ", "first orbit difference N=10 vs N=1"), ("share of k where N = 3 and N = 10 agree", "N=3 vs N=10 orbit agreement"), ("N = 1 rigid-limit impact velocity", "N=1 rigid-limit impact velocity")];
     type Params = Fig5Params;
     type Data = Fig5Data;
 
@@ -516,6 +517,24 @@ impl Scene for Fig5 {
             "all four Fig 4 orbits are attractors up to",
             c.paper_figure4_set_reachable_at.last().copied(),
         );
+        // from where on N = 3 and N = 10 never reach the same orbit set again
+        let by = |n: usize| d.diagrams.iter().find(|g| g.modes == n);
+        if let (Some(three), Some(ten)) = (by(3), by(10)) {
+            let last_agree = (0..grid.len()).rev().find(|&i| three.kinds(i) == ten.kinds(i));
+            let from = last_agree.map_or(Some(grid[0]), |i| grid.get(i + 1).copied());
+            at_grid("N=3 and N=10 differ at every k from", from);
+        }
+        if let Some(x) = c.n3_one_three_from {
+            let i = grid.iter().position(|g| *g == x).unwrap_or(0);
+            let below = if i > 0 { grid[i - 1] } else { x };
+            k.cited(
+                "N=3 (1,3) onset over the paper's k = 100k1",
+                x / 100.0,
+                2,
+                Uncertainty::new((x - below) / 100.0, "grid interval of the k sweep"),
+                "",
+            );
+        }
         let points = grid.len() as f64;
         let fraction = || {
             Uncertainty::new(1.0 / points, format!("resolution of a {points}-point k grid"))

@@ -1,70 +1,98 @@
 //! Figure 5: impact velocities on the impact section against k, one panel per N.
 
-use crate::render::{cell, drawing, markdown_table, RenderError, WIDTH};
+use crate::render::{
+    cell, draw_legend, drawing, markdown_table, RenderError, AXIS_FONT, LABEL_FONT, WIDTH,
+};
 use super::Fig5Data;
 use plotters::prelude::*;
 
-/// The SVG plot.
+/// The SVG plot: one panel per N, each with its own velocity range. Points repeating on a
+/// periodic orbit are drawn once (to 1e-3 of the panel's range), which keeps the file small
+/// without changing what is seen; the N = 1 panel states its rigid limit (k → ∞).
 pub fn plot(d: &Fig5Data) -> Result<String, RenderError> {
     let rows = d.diagrams.len().max(1);
     let mut svg = String::new();
     {
         let root =
-            SVGBackend::with_string(&mut svg, (WIDTH, 250 * rows as u32)).into_drawing_area();
+            SVGBackend::with_string(&mut svg, (WIDTH, 300 * rows as u32)).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
         let panels = root.split_evenly((rows, 1));
         let (lo, hi) = d.params.k_over_k1_range;
-        let vmax = d
-            .diagrams
-            .iter()
-            .flat_map(|g| {
-                g.columns
-                    .iter()
-                    .flatten()
-                    .flat_map(|s| s.impact_velocities.iter())
-            })
-            .fold(0.0_f64, |a, &v| a.max(v))
-            * 1.05;
+        let k2 = crate::continuum::modal_stiffness(2).unwrap_or(f64::NAN)
+            / crate::galerkin::first_modal_stiffness();
         let letters = ["(a)", "(b)", "(c)", "(d)", "(e)", "(f)"];
         for (p, g) in d.diagrams.iter().enumerate() {
+            let vmax = g
+                .columns
+                .iter()
+                .flatten()
+                .flat_map(|s| s.impact_velocities.iter())
+                .fold(0.0_f64, |a, &v| a.max(v))
+                * 1.08;
+            let vmax = vmax.max(1e-9);
             let mut chart = ChartBuilder::on(&panels[p])
                 .caption(
-                    format!(
-                        "{} N = {}: impact velocity / (ω A_free)",
-                        letters[p % 6],
-                        g.modes
-                    ),
-                    ("sans-serif", 16),
+                    format!("{} N = {}: impact velocity / ωA", letters[p % 6], g.modes),
+                    ("sans-serif", 20),
                 )
-                .margin(6)
-                .x_label_area_size(30)
-                .y_label_area_size(46)
-                .build_cartesian_2d((lo..hi).log_scale(), 0.0..vmax.max(1e-9))
+                .margin(8)
+                .x_label_area_size(40)
+                .y_label_area_size(60)
+                .build_cartesian_2d((lo..hi).log_scale(), 0.0..vmax)
                 .map_err(drawing)?;
             chart
                 .configure_mesh()
                 .x_desc("k / k₁")
                 .x_label_formatter(&|x| format!("{x:.0e}"))
+                .label_style(LABEL_FONT)
+                .axis_desc_style(AXIS_FONT)
                 .draw()
                 .map_err(drawing)?;
-            let points = g.columns.iter().zip(&d.k_over_k1).flat_map(|(col, &k)| {
-                col.iter()
-                    .flat_map(move |s| s.impact_velocities.iter().map(move |&v| (k, v)))
-            });
+            let quantum = 1e-3 * vmax;
+            let mut points = Vec::new();
+            for (col, &k) in g.columns.iter().zip(&d.k_over_k1) {
+                let mut seen: Vec<i64> = col
+                    .iter()
+                    .flat_map(|s| s.impact_velocities.iter())
+                    .map(|v| (v / quantum).round() as i64)
+                    .collect();
+                seen.sort_unstable();
+                seen.dedup();
+                points.extend(seen.into_iter().map(|q| (k, q as f64 * quantum)));
+            }
             chart
                 .draw_series(
-                    points.map(|pt| Circle::new(pt, 1, RGBColor(0, 60, 140).mix(0.5).filled())),
+                    points
+                        .into_iter()
+                        .map(|pt| Circle::new(pt, 2, RGBColor(0, 60, 140).mix(0.6).filled())),
                 )
                 .map_err(drawing)?;
-            let k2 = 39.27;
             chart
                 .draw_series(DashedLineSeries::new(
                     vec![(k2, 0.0), (k2, vmax)],
+                    6,
                     4,
-                    4,
-                    RGBColor(213, 40, 0).stroke_width(1),
+                    RGBColor(213, 40, 0).stroke_width(2),
                 ))
-                .map_err(drawing)?;
+                .map_err(drawing)?
+                .label("k₂")
+                .legend(|(x, y)| {
+                    EmptyElement::at((x, y))
+                        + PathElement::new(vec![(0, 0), (7, 0)], RGBColor(213, 40, 0).stroke_width(2))
+                        + PathElement::new(vec![(12, 0), (19, 0)], RGBColor(213, 40, 0).stroke_width(2))
+                });
+            if g.modes == 1 {
+                if let Some(r) = &d.rigid_limit {
+                    chart
+                        .draw_series(std::iter::once(Text::new(
+                            format!("rigid limit (k → ∞): {:.1} ↑", r.impact_velocity),
+                            (hi / 12.0, vmax * 0.93),
+                            LABEL_FONT.into_font().color(&RGBColor(0, 120, 60)),
+                        )))
+                        .map_err(drawing)?;
+                }
+            }
+            draw_legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
         }
         root.present().map_err(drawing)?;
     }

@@ -215,6 +215,7 @@ impl Scene for Spectrum {
     const CLAIM: &'static str = "The roots of eq (3) move from the cantilever to the clamped-pinned values; $(\\beta_i^+)^4 = (\\beta_i^-)^4 + k + O(k^2)$; $k_2 \\approx 39.3k_1$.";
     const CHAPTER: &'static str = "spectrum.md";
     const METHOD: &'static str = "roots of eq (3), scaled against overflow and bracketed between the free and clamped-pinned roots, by Brent's method to 1e-15 relative; checked against 50-digit mpmath values and Blevins' table; the remainder of eq (4) by a log–log fit and second-order perturbation theory";
+    const HEADLINE: &'static [(&'static str, &'static str)] = &[("k₂/k₁", "k2_over_k1"), ("order of the remainder of eq (4)", "small_k_fitted_order")];
     type Params = SpectrumParams;
     type Data = SpectrumData;
 
