@@ -172,6 +172,9 @@ pub trait Entry: Sync {
     fn method(&self) -> &'static str;
     /// [`Scene::HEADLINE`].
     fn headline(&self) -> &'static [(&'static str, &'static str)];
+    /// Whether the tests run this scene at a reduced resolution (its parameters differ
+    /// between [`Resolution::Test`] and [`Resolution::Book`]).
+    fn reduced_for_tests(&self) -> bool;
     /// Computes, picks the key numbers and the verdict, renders.
     fn run(&self, resolution: Resolution, progress: &dyn Progress) -> Result<SceneOutput, Error>;
 }
@@ -197,6 +200,10 @@ impl<S: Scene> Entry for S {
     }
     fn headline(&self) -> &'static [(&'static str, &'static str)] {
         S::HEADLINE
+    }
+    fn reduced_for_tests(&self) -> bool {
+        let json = |r| serde_json::to_value(S::params(r)).ok();
+        json(Resolution::Test) != json(Resolution::Book)
     }
     fn run(&self, resolution: Resolution, progress: &dyn Progress) -> Result<SceneOutput, Error> {
         let provenance = Provenance::now(match resolution {
