@@ -72,6 +72,11 @@ pub fn build(root: &Path, resolution: Resolution, progress: &dyn Progress) -> Re
         &generated.join("summary.md"),
         &summary_table(scenes, &outputs),
     )?;
+    let provenance = outputs
+        .first()
+        .map(|o| o.provenance.clone())
+        .unwrap_or_else(|| Provenance::now("book"));
+    scene::write_atomically(&generated.join("citation.md"), &citation(&provenance))?;
     let t = Instant::now();
     let numbers = NumbersPreprocessor {
         numbers: scenes
@@ -83,10 +88,7 @@ pub fn build(root: &Path, resolution: Resolution, progress: &dyn Progress) -> Re
             .iter()
             .map(|spec| (spec.chapter().to_string(), spec.name().to_string()))
             .collect(),
-        provenance: outputs
-            .first()
-            .map(|o| o.provenance.clone())
-            .unwrap_or_else(|| Provenance::now("book")),
+        provenance,
     };
     let mut book = MDBook::load(root).context("loading the book")?;
     book.with_preprocessor(numbers);
@@ -135,6 +137,19 @@ pub fn summary_table(scenes: &[&dyn Entry], outputs: &[SceneOutput]) -> String {
         ));
     }
     s
+}
+
+/// How to cite the software that built this book, and the paper (plain text and BibTeX).
+pub fn citation(provenance: &Provenance) -> String {
+    use crate::citation as c;
+    format!(
+        "**The software** (this build):\n\n> {}\n\n```bibtex\n{}\n```\n\n\
+         **The paper:**\n\n> {}\n\n```bibtex\n{}\n```\n",
+        c::software_plain(provenance),
+        c::software_bibtex(provenance),
+        c::PAPER_PLAIN,
+        c::PAPER_BIBTEX
+    )
 }
 
 fn copy_dir(from: &Path, to: &Path) -> Result<()> {

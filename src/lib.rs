@@ -48,6 +48,7 @@
 //! with `default-features = false` and compiles no CLI crates.
 
 pub mod asymptotics;
+pub mod citation;
 pub mod continuum;
 pub mod dopri5;
 pub mod error;

@@ -56,6 +56,21 @@ pub enum KeyValue {
     Text(String),
 }
 
+/// What a unit of the key numbers means (the paper's non-dimensional beam: length, time
+/// and stiffness scaled as in its §2).
+pub fn unit_meaning(unit: &str) -> Option<&'static str> {
+    Some(match unit {
+        "A_free" => {
+            "A_free, the amplitude of the tip without the stop (the linear steady response) \
+             at the scene's forcing frequency ω and amplitude"
+        }
+        "ωA_free" => "ω·A_free, the tip's velocity amplitude without the stop",
+        "T" => "the forcing period 2π/ω (a time given as a fraction of it)",
+        "k₁" => "k₁ = (β₁⁻)⁴ ≈ 12.3624, the first modal stiffness of the free cantilever",
+        _ => return None,
+    })
+}
+
 /// Rounds `x` to `digits` significant figures (the printed digits are exactly these).
 pub fn round_sig(x: f64, digits: usize) -> f64 {
     format_sig(x, digits).parse().unwrap_or(x)
@@ -227,6 +242,7 @@ impl KeyNumbers {
                     "uncertainty": c.uncertainty.value,
                     "uncertainty_basis": c.uncertainty.basis,
                     "unit": c.unit,
+                    "unit_meaning": unit_meaning(&c.unit),
                     "digits": c.digits,
                 }),
             };
@@ -239,6 +255,13 @@ impl KeyNumbers {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_quoted_k1_is_the_first_modal_stiffness_to_its_printed_figures() {
+        let k1 = crate::galerkin::first_modal_stiffness();
+        assert!((k1 - 12.3624).abs() <= 0.5e-4, "{k1}");
+        assert!(unit_meaning("k₁").unwrap().contains("12.3624"));
+    }
 
     #[test]
     fn significant_figures_not_decimal_places() {

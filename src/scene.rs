@@ -150,6 +150,8 @@ pub struct SceneOutput {
     pub verdict: Verdict,
     /// All computed data, with the parameters.
     pub data: serde_json::Value,
+    /// The parameters the data were computed with.
+    pub params: serde_json::Value,
     /// Plots and tables.
     pub rendered: Rendered,
     /// Where the numbers come from.
@@ -210,14 +212,19 @@ impl<S: Scene> Entry for S {
             Resolution::Book => "book",
             Resolution::Test => "test",
         });
-        let data = S::compute(&S::params(resolution), progress)?;
-        let json = serde_json::to_value(&data)
-            .map_err(|e| Error::Unsupported(format!("scene {} data: {e}", S::NAME)))?;
+        let params = S::params(resolution);
+        let data = S::compute(&params, progress)?;
+        let to_json = |what, v: Result<serde_json::Value, serde_json::Error>| {
+            v.map_err(|e| Error::Unsupported(format!("scene {} {what}: {e}", S::NAME)))
+        };
+        let json = to_json("data", serde_json::to_value(&data))?;
+        let params = to_json("parameters", serde_json::to_value(&params))?;
         Ok(SceneOutput {
             key_numbers: S::key_numbers(&data),
             verdict: S::verdict(&data),
             rendered: S::render(&data)?,
             data: json,
+            params,
             provenance,
         })
     }
@@ -259,14 +266,15 @@ pub fn write_atomically(path: &Path, text: &str) -> Result<(), Error> {
 }
 
 /// The key numbers as a citable document: the scene, the paper's claim, the method, the
-/// provenance, the verdict and every number with its uncertainty (the shape of
-/// `key_numbers.json` and of `cantilever scene NAME --json`).
+/// parameters, the provenance, the verdict and every number with its uncertainty (the
+/// shape of `key_numbers.json` and of `cantilever scene NAME --json`).
 pub fn key_numbers_document(spec: &dyn Entry, out: &SceneOutput) -> serde_json::Value {
     serde_json::json!({
         "scene": spec.name(),
         "paper": spec.paper(),
         "claim": spec.claim(),
         "method": spec.method(),
+        "parameters": out.params,
         "provenance": out.provenance,
         "verdict": out.verdict,
         "key_numbers": out.key_numbers.to_json(),

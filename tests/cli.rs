@@ -256,3 +256,65 @@ fn a_closed_pipe_ends_quietly_instead_of_panicking() {
     assert!(!err.contains("panicked"), "{err}");
     assert_eq!(out.status.code(), Some(0));
 }
+
+#[test]
+fn cite_prints_the_number_its_uncertainty_provenance_and_both_citations() {
+    // fig3-d is cheap at book resolution; its probe of the collocation law at s = 1 is the
+    // exact identity φ₁(1) = 2
+    let (code, out, err) = cantilever(&["cite", "fig3-d", "phi1(1)"]);
+    assert_eq!(code, 0, "{err}");
+    let first = out.lines().next().unwrap();
+    assert!(first.starts_with("phi1(1) = 2.0000000e0 ± "), "{first}");
+    for needed in [
+        "uncertainty  ",
+        "parameters   {",
+        "method       ",
+        "computed by  impacting-cantilever ",
+        "book resolution",
+        "@software{impacting_cantilever",
+        "doi     = {10.1098/rsta.2012.0434}",
+    ] {
+        assert!(out.contains(needed), "missing {needed:?} in\n{out}");
+    }
+    let (code, json, _) = cantilever(&["cite", "fig3-d", "phi1(1)", "--json"]);
+    assert_eq!(code, 0);
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let keys = v["key_numbers"].as_object().unwrap();
+    assert_eq!(keys.len(), 1);
+    assert_eq!(keys["phi1(1)"]["value"], 2.0);
+    assert!(keys["phi1(1)"]["uncertainty"].as_f64().unwrap() > 0.0);
+    assert_eq!(v["provenance"]["resolution"], "book");
+    assert!(v["parameters"].is_object());
+    assert!(v["cite"]["paper"]["bibtex"]
+        .as_str()
+        .unwrap()
+        .contains("Melcher"));
+}
+
+#[test]
+fn cite_rejects_an_unknown_key_naming_the_nearest_ones() {
+    let (code, out, err) = cantilever(&["cite", "fig3-d", "phi1 at 1"]);
+    assert_eq!(code, 2);
+    assert!(out.is_empty());
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.starts_with(
+            "error: invalid KEY: got phi1 at 1; allowed: a key number of fig3-d (e.g. \"phi1(1)\""
+        ),
+        "{err}"
+    );
+}
+
+#[test]
+fn citation_cff_matches_the_crate_and_the_cite_command() {
+    use impacting_cantilever::citation;
+    let cff =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/CITATION.cff")).unwrap();
+    assert!(cff.contains(&format!("\nversion: {}\n", env!("CARGO_PKG_VERSION"))));
+    // YAML's folded scalars: compare with whitespace collapsed
+    let flat = cff.split_whitespace().collect::<Vec<_>>().join(" ");
+    assert!(flat.contains(citation::SOFTWARE_TITLE), "title");
+    assert!(flat.contains(&format!("- name: {}", citation::SOFTWARE_AUTHORS)));
+    assert!(citation::PAPER_PLAIN.contains("doi:10.1098/rsta.2012.0434"));
+    assert!(cff.contains("doi: 10.1098/rsta.2012.0434"));
+}

@@ -3,6 +3,7 @@
 //! Every bad input exits with status 2 and one line naming the parameter and what is
 //! allowed.
 
+mod cite;
 mod progress;
 mod simulate;
 
@@ -74,6 +75,20 @@ enum Command {
         #[command(flatten)]
         args: simulate::Args,
         /// Print JSON.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Cite a key number of a scene (or all of them): the value ± its uncertainty and how
+    /// it was obtained, its unit, the parameters, the method, the build that computed it,
+    /// and the software and the paper as plain text and BibTeX. Computes the scene at the
+    /// book's resolution (Figure 5 takes ~15 s).
+    Cite {
+        /// The scene's name (see `cantilever list`).
+        scene: String,
+        /// The key number, exactly as `cantilever cite SCENE` lists it (quote it: keys
+        /// have spaces), e.g. "N=3 impact_velocity_1". All of the scene's when omitted.
+        key: Option<String>,
+        /// Print JSON (the scene's key_numbers.json document with the citations).
         #[arg(long)]
         json: bool,
     },
@@ -204,6 +219,18 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 );
             } else {
                 emit(&simulate::to_text(&report));
+            }
+            Ok(())
+        }
+        Command::Cite { scene, key, json } => {
+            let c = cite::run(&scene, key.as_deref(), &progress::Bars::default())?;
+            if json {
+                outln!(
+                    "{}",
+                    serde_json::to_string_pretty(&cite::to_json(&c)).unwrap_or_default()
+                );
+            } else {
+                emit(&cite::to_text(&c));
             }
             Ok(())
         }
