@@ -119,7 +119,7 @@ pub fn summary_table(scenes: &[&dyn Entry], outputs: &[SceneOutput]) -> String {
             .filter_map(|(label, key)| {
                 out.key_numbers
                     .get(key)
-                    .map(|v| format!("{label}: {}", v.prose(true)))
+                    .map(|v| format!("{label}: {}", for_html(&v.prose(true))))
             })
             .collect();
         let name = spec.name();
@@ -137,6 +137,12 @@ pub fn summary_table(scenes: &[&dyn Entry], outputs: &[SceneOutput]) -> String {
         ));
     }
     s
+}
+
+/// A key number's prose for a page: the unit's subscript as HTML (`A_free` would show its
+/// underscore).
+fn for_html(prose: &str) -> String {
+    prose.replace("A_free", "A<sub>free</sub>")
 }
 
 /// How to cite the software that built this book, and the paper (plain text and BibTeX).
@@ -211,7 +217,7 @@ impl NumbersPreprocessor {
             let value = self.lookup(&after[..end])?;
             out.push_str(&match (kind, value) {
                 ("u", KeyValue::Float(c)) => pretty(c.uncertainty.value, 1),
-                ("pm", v) => v.prose(true),
+                ("pm", v) => for_html(&v.prose(true)),
                 (_, v) => v.prose(false),
             });
             rest = &after[end + 2..];

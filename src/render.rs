@@ -2,7 +2,9 @@
 //! which writes text as SVG `<text>` and so needs no system fonts) and markdown tables.
 //! No numerics here.
 
+use plotters::chart::MeshStyle;
 use plotters::coord::ranged1d::{Ranged, ValueFormatter};
+use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 
 /// Plot size in pixels (the book scales SVGs to the page width).
@@ -19,13 +21,31 @@ pub fn drawing<E: std::fmt::Debug>(e: E) -> RenderError {
 }
 
 /// Tick labels (px as drawn; the 1000 px plots are shown at about 0.7 scale in the book,
-/// so 16 px reads as about 11 px).
-pub const LABEL_FONT: (&str, u32) = ("sans-serif", 16);
+/// so 18 px reads as about 12.5 px).
+pub const LABEL_FONT: (&str, u32) = ("sans-serif", 18);
 /// Axis descriptions.
-pub const AXIS_FONT: (&str, u32) = ("sans-serif", 18);
+pub const AXIS_FONT: (&str, u32) = ("sans-serif", 20);
+/// Panel titles.
+pub const CAPTION_FONT: (&str, u32) = ("sans-serif", 22);
 
-/// Draws the mesh of `chart` with the book's label sizes and the given axis descriptions.
-pub fn mesh<'a, DB, X, Y>(
+/// The mesh of `chart` with the book's label sizes; add descriptions and formatters, then
+/// `.draw()`.
+pub fn styled_mesh<'a, 'b, DB, X, Y, XT, YT>(
+    chart: &'b mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
+) -> MeshStyle<'a, 'b, X, Y, DB>
+where
+    DB: DrawingBackend + 'a,
+    X: Ranged<ValueType = XT> + ValueFormatter<XT>,
+    Y: Ranged<ValueType = YT> + ValueFormatter<YT>,
+{
+    let mut m = chart.configure_mesh();
+    m.label_style(LABEL_FONT).axis_desc_style(AXIS_FONT);
+    m
+}
+
+/// Draws the mesh of a log–log `chart` with the book's label sizes, the given axis
+/// descriptions and ticks as powers of ten.
+pub fn log_log_mesh<'a, DB, X, Y>(
     chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
     x_desc: &str,
     y_desc: &str,
@@ -35,14 +55,25 @@ where
     X: Ranged<ValueType = f64> + ValueFormatter<f64>,
     Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
 {
-    chart
-        .configure_mesh()
+    styled_mesh(chart)
         .x_desc(x_desc)
         .y_desc(y_desc)
-        .label_style(LABEL_FONT)
-        .axis_desc_style(AXIS_FONT)
+        .x_label_formatter(&|x| format!("{x:.0e}"))
+        .y_label_formatter(&|y| format!("{y:.0e}"))
         .draw()
         .map_err(drawing)
+}
+
+/// A legend entry for a solid line of `style`.
+pub fn solid_key(style: ShapeStyle) -> impl Fn((i32, i32)) -> PathElement<(i32, i32)> {
+    move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], style)
+}
+
+/// A legend entry for a dashed line of `style` (as the series is drawn).
+pub fn dashed_key(
+    style: ShapeStyle,
+) -> impl Fn((i32, i32)) -> DashedPathElement<std::vec::IntoIter<(i32, i32)>, i32> {
+    move |(x, y)| DashedPathElement::new(vec![(x, y), (x + 24, y)], 5, 3, style)
 }
 
 /// Draws the series labels of `chart` in a framed, half-transparent box at `position`.
@@ -79,11 +110,13 @@ pub fn palette(i: usize) -> RGBColor {
     C[i % C.len()]
 }
 
-/// A markdown table from a header and rows of cells.
+/// A markdown table from a header and rows of cells: the first column left-aligned, the
+/// rest right-aligned.
 pub fn markdown_table(header: &[&str], rows: &[Vec<String>]) -> String {
     let mut s = format!("| {} |\n|", header.join(" | "));
-    for _ in header {
-        s.push_str("---:|");
+    // the first column names the row (left); the others hold numbers (right)
+    for i in 0..header.len() {
+        s.push_str(if i == 0 { ":---|" } else { "---:|" });
     }
     s.push('\n');
     for r in rows {

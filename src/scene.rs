@@ -72,7 +72,7 @@ impl std::fmt::Display for Outcome {
             Outcome::Reproduced => "reproduced",
             Outcome::Partly => "partly reproduced",
             Outcome::NotReproduced => "not reproduced",
-            Outcome::NoClaim => "—",
+            Outcome::NoClaim => "a check of our methods",
         })
     }
 }

@@ -51,7 +51,7 @@ fn book_builds_with_rendered_math_plots_and_tables() {
         "no CDN math script"
     );
     assert!(page.contains("generated/fig2/plot.svg"));
-    assert!(page.contains("λ_N/(kN)"), "generated table included");
+    assert!(page.contains("rel. error</th>"), "generated table included");
     assert!(tmp.join("build/generated/fig2/plot.svg").exists());
     assert!(tmp
         .join("build/assets/math/font/latinmodern-math.woff2")
@@ -91,4 +91,29 @@ fn book_builds_with_rendered_math_plots_and_tables() {
         );
     }
     std::fs::remove_dir_all(&tmp).ok();
+}
+
+/// The chapters speak to readers of the paper: no stray control characters (a `\a` of
+/// `\approx` once became a BEL), and none of our own process vocabulary.
+#[test]
+fn chapter_sources_are_clean_text_for_readers() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("book/src");
+    for chapter in chapters_of_summary(&src.join("SUMMARY.md")) {
+        let text = std::fs::read_to_string(src.join(format!("{chapter}.md"))).unwrap();
+        if let Some(c) = text.chars().find(|c| c.is_control() && *c != '\n') {
+            panic!("{chapter}.md contains the control character {c:?}");
+        }
+        let lower = text.to_lowercase();
+        for jargon in [
+            "the issue",
+            "issue #",
+            "this 2-core machine",
+            "our reading notes",
+            "next issues",
+            "still to come",
+            "todo",
+        ] {
+            assert!(!lower.contains(jargon), "{chapter}.md says {jargon:?}");
+        }
+    }
 }

@@ -1,7 +1,10 @@
 //! Figure 2: eigenfrequencies of K⁺ (solid) and of the continuum (dashed) against k, for
 //! each N (panels a–c), and λ_N/(kN) (panel d).
 
-use crate::render::{cell, draw_legend, drawing, markdown_table, palette, RenderError, WIDTH};
+use crate::render::{
+    cell, dashed_key, draw_legend, drawing, markdown_table, palette, solid_key, styled_mesh,
+    RenderError, CAPTION_FONT, WIDTH,
+};
 use super::Fig2Data;
 use plotters::prelude::*;
 
@@ -9,7 +12,7 @@ use plotters::prelude::*;
 pub fn plot(d: &Fig2Data) -> Result<String, RenderError> {
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (WIDTH, 820)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, (WIDTH, 900)).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
         let panels = root.split_evenly((2, 2));
         let (lo, hi) = d.params.k_over_k1_range;
@@ -27,15 +30,15 @@ pub fn plot(d: &Fig2Data) -> Result<String, RenderError> {
             let mut chart = ChartBuilder::on(&panels[p])
                 .caption(
                     format!("{} N = {n}: frequency / (β₁⁻)²", letters[p]),
-                    ("sans-serif", 18),
+                    CAPTION_FONT,
                 )
                 .margin(8)
-                .x_label_area_size(36)
-                .y_label_area_size(56)
+                .margin_right(28)
+                .x_label_area_size(44)
+                .y_label_area_size(64)
                 .build_cartesian_2d((lo..hi).log_scale(), (0.5..ymax * 1.5).log_scale())
                 .map_err(drawing)?;
-            chart
-                .configure_mesh()
+            styled_mesh(&mut chart)
                 .x_desc("k / k₁")
                 .x_label_formatter(&|x| format!("{x:.0e}"))
                 .y_label_formatter(&|y| format!("{y:.0e}"))
@@ -43,7 +46,7 @@ pub fn plot(d: &Fig2Data) -> Result<String, RenderError> {
                 .map_err(drawing)?;
             for (i, lam) in t.lambda.iter().enumerate() {
                 let c = palette(i);
-                chart
+                let galerkin = chart
                     .draw_series(LineSeries::new(
                         d.k_over_k1
                             .iter()
@@ -52,7 +55,12 @@ pub fn plot(d: &Fig2Data) -> Result<String, RenderError> {
                         c.stroke_width(2),
                     ))
                     .map_err(drawing)?;
-                chart
+                if i == 0 {
+                    galerkin
+                        .label(format!("N = {n} Galerkin (colour: mode i)"))
+                        .legend(solid_key(c.stroke_width(2)));
+                }
+                let exact = chart
                     .draw_series(DashedLineSeries::new(
                         d.k_over_k1
                             .iter()
@@ -63,7 +71,13 @@ pub fn plot(d: &Fig2Data) -> Result<String, RenderError> {
                         BLACK.stroke_width(1),
                     ))
                     .map_err(drawing)?;
+                if i == 0 {
+                    exact
+                        .label("continuum, eq (3)")
+                        .legend(dashed_key(BLACK.stroke_width(1)));
+                }
             }
+            draw_legend(&mut chart, SeriesLabelPosition::LowerRight)?;
         }
         let ymax_scaled = d
             .truncations
@@ -72,14 +86,14 @@ pub fn plot(d: &Fig2Data) -> Result<String, RenderError> {
             .fold(1.0, f64::max)
             * 1.5;
         let mut chart = ChartBuilder::on(&panels[3])
-            .caption("(d) highest eigenvalue λ_N / (kN)", ("sans-serif", 18))
+            .caption("(d) top eigenvalue of K⁺ over kN", CAPTION_FONT)
             .margin(8)
-            .x_label_area_size(36)
-            .y_label_area_size(56)
+            .margin_right(28)
+            .x_label_area_size(44)
+            .y_label_area_size(64)
             .build_cartesian_2d((lo..hi).log_scale(), (0.8..ymax_scaled).log_scale())
             .map_err(drawing)?;
-        chart
-            .configure_mesh()
+        styled_mesh(&mut chart)
             .x_desc("k / k₁")
             .x_label_formatter(&|x| format!("{x:.0e}"))
             .y_label_formatter(&|y| format!("{y:.0e}"))
@@ -97,7 +111,7 @@ pub fn plot(d: &Fig2Data) -> Result<String, RenderError> {
                 ))
                 .map_err(drawing)?
                 .label(format!("N = {}", t.modes))
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c));
+                .legend(solid_key(c.stroke_width(2)));
         }
         draw_legend(&mut chart, SeriesLabelPosition::UpperRight)?;
         root.present().map_err(drawing)?;
@@ -127,10 +141,10 @@ pub fn table(d: &Fig2Data) -> String {
             "N",
             "k/k₁",
             "i",
-            "λᵢ of K⁺",
-            "(βᵢ⁺)⁴ exact",
+            "$\\lambda_i$ of $K^+$",
+            "$(\\beta_i^+)^4$ exact",
             "rel. error",
-            "λ_N/(kN)",
+            "$\\lambda_N/(kN)$",
         ],
         &rows,
     )

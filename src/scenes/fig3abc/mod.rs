@@ -315,7 +315,7 @@ impl Scene for Fig3abc {
                 Outcome::Partly
             },
             evidence: format!(
-                "the gap to $[R]_N$ closes like $\\varepsilon^p$, p = {} for N = {}; N = 2 mode-1 CoR {} at ε = 1e-4",
+                "the gap to $[R]_N$ closes like $\\varepsilon^p$, p = {} for N = {}; for N = 2 the first mode's return coefficient is {} at ε = 1e-4",
                 orders.join(", "),
                 d.series
                     .iter()
@@ -328,6 +328,8 @@ impl Scene for Fig3abc {
     }
 
     fn render(d: &Fig3abcData) -> Result<Rendered, crate::render::RenderError> {
-        Ok(Rendered::new(render::plot(d)?, render::table(d)))
+        let mut r = Rendered::new(render::plot(d)?, render::table(d));
+        r.extra_tables.push(("ratios", render::ratios_table(d)));
+        Ok(r)
     }
 }

@@ -1,7 +1,10 @@
 //! Figure 3(a)–(c): simulated return velocities against the impact laws, and the gap's
 //! convergence for every N.
 
-use crate::render::{draw_legend, drawing, markdown_table, palette, RenderError, WIDTH};
+use crate::render::{
+    dashed_key, draw_legend, drawing, markdown_table, palette, solid_key, styled_mesh,
+    RenderError, CAPTION_FONT, WIDTH,
+};
 use crate::report::format_sig;
 use super::Fig3abcData;
 use plotters::prelude::*;
@@ -20,17 +23,17 @@ fn panel<DB: DrawingBackend>(
         .fold((f64::MAX, f64::MIN), |(a, b), &v| (a.min(v), b.max(v)));
     let pad = 0.05 * (hi - lo).max(1e-6);
     let mut chart = ChartBuilder::on(area)
-        .caption(title, ("sans-serif", 16))
+        .caption(title, CAPTION_FONT)
         .margin(8)
-        .x_label_area_size(32)
-        .y_label_area_size(52)
+        .margin_right(28)
+        .x_label_area_size(44)
+        .y_label_area_size(64)
         .build_cartesian_2d(
             (eps[0]..eps[eps.len() - 1]).log_scale(),
             (lo - pad)..(hi + pad),
         )
         .map_err(drawing)?;
-    chart
-        .configure_mesh()
+    styled_mesh(&mut chart)
         .x_desc("ε")
         .x_label_formatter(&|x| format!("{x:.0e}"))
         .draw()
@@ -43,7 +46,7 @@ fn panel<DB: DrawingBackend>(
         ))
         .map_err(drawing)?
         .label(labels.0)
-        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c));
+        .legend(solid_key(c.stroke_width(2)));
     chart
         .draw_series(DashedLineSeries::new(
             eps.iter().cloned().zip(predicted.iter().cloned()),
@@ -53,7 +56,7 @@ fn panel<DB: DrawingBackend>(
         ))
         .map_err(drawing)?
         .label(labels.1)
-        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK));
+        .legend(dashed_key(BLACK.stroke_width(1)));
     draw_legend(&mut chart, SeriesLabelPosition::LowerLeft)?;
     Ok(())
 }
@@ -62,7 +65,7 @@ fn panel<DB: DrawingBackend>(
 pub fn plot(d: &Fig3abcData) -> Result<String, RenderError> {
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (WIDTH, 760)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, (WIDTH, 860)).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
         let cells = root.split_evenly((2, 2));
         let eps = &d.params.eps;
@@ -73,7 +76,7 @@ pub fn plot(d: &Fig3abcData) -> Result<String, RenderError> {
                 eps,
                 &one.simulated,
                 &one.asymptotic,
-                ("simulated", "r_e², eq (19)"),
+                ("simulated", "rₑ², eq (19)"),
             )?;
         }
         if let Some(two) = d.series.iter().find(|s| s.modes == 2) {
@@ -84,7 +87,7 @@ pub fn plot(d: &Fig3abcData) -> Result<String, RenderError> {
                 eps,
                 &col(0, &two.simulated),
                 &col(0, &two.predicted),
-                ("simulated", "[R]₁₁ = (1 − r_e)/2"),
+                ("simulated", "[R]₁₁ = (1 − rₑ)/2"),
             )?;
             panel(
                 &cells[2],
@@ -92,7 +95,7 @@ pub fn plot(d: &Fig3abcData) -> Result<String, RenderError> {
                 eps,
                 &col(1, &two.simulated),
                 &col(1, &two.predicted),
-                ("simulated", "[R]₂₁ = (3r_e − 1)/2"),
+                ("simulated", "[R]₂₁ = (3rₑ − 1)/2"),
             )?;
         }
         let gmin = d
@@ -109,17 +112,17 @@ pub fn plot(d: &Fig3abcData) -> Result<String, RenderError> {
             .cloned()
             .fold(0.0, f64::max);
         let mut chart = ChartBuilder::on(&cells[3])
-            .caption("gap to the impact law [R]_N, every N", ("sans-serif", 16))
+            .caption("(d) gap to the impact law, every N", CAPTION_FONT)
             .margin(8)
-            .x_label_area_size(32)
-            .y_label_area_size(52)
+            .margin_right(28)
+            .x_label_area_size(44)
+            .y_label_area_size(64)
             .build_cartesian_2d(
                 (eps[0]..eps[eps.len() - 1]).log_scale(),
                 (gmin / 2.0..gmax * 2.0).log_scale(),
             )
             .map_err(drawing)?;
-        chart
-            .configure_mesh()
+        styled_mesh(&mut chart)
             .x_desc("ε")
             .x_label_formatter(&|x| format!("{x:.0e}"))
             .y_label_formatter(&|y| format!("{y:.0e}"))
@@ -134,7 +137,7 @@ pub fn plot(d: &Fig3abcData) -> Result<String, RenderError> {
                 ))
                 .map_err(drawing)?
                 .label(format!("N = {} (order {:.2})", s.modes, s.observed_order))
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c));
+                .legend(solid_key(c.stroke_width(2)));
         }
         draw_legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
         root.present().map_err(drawing)?;
@@ -142,12 +145,39 @@ pub fn plot(d: &Fig3abcData) -> Result<String, RenderError> {
     Ok(svg)
 }
 
-/// The markdown table at each ε.
+/// The observed orders of the gap, one row per N.
 pub fn table(d: &Fig3abcData) -> String {
+    markdown_table(
+        &[
+            "N",
+            "$\\kappa = kN\\varepsilon^2$",
+            "observed order of the gap, $\\varepsilon \\in [10^{-4}, 10^{-3}]$",
+            "observed order, $\\varepsilon \\in [10^{-4}, 10^{-2}]$",
+            "contact time over eq (18) at $\\varepsilon = 10^{-4}$",
+        ],
+        &d.series
+            .iter()
+            .map(|s| {
+                vec![
+                    s.modes.to_string(),
+                    format!("{}", s.kappa),
+                    format!("{:.3}", s.observed_order),
+                    format!("{:.3}", s.observed_order_wide),
+                    format!("{:.7}", s.passage_ratio[0]),
+                ]
+            })
+            .collect::<Vec<_>>(),
+    )
+}
+
+/// The return ratios at the decades of ε and around $\varepsilon = k_2^{-1/2}$, where the
+/// gap jumps (every ε is in `data.json`).
+pub fn ratios_table(d: &Fig3abcData) -> String {
+    let shown = |i: usize, e: f64| i.is_multiple_of(4) || (0.03..0.07).contains(&e);
     let mut rows = Vec::new();
     for s in &d.series {
         for (i, e) in d.params.eps.iter().enumerate() {
-            if i % 2 != 0 {
+            if !shown(i, *e) {
                 continue;
             }
             let show = |v: &[f64]| {
@@ -159,42 +189,21 @@ pub fn table(d: &Fig3abcData) -> String {
             };
             rows.push(vec![
                 s.modes.to_string(),
-                format_sig(*e, 2),
+                format_sig(*e, 3),
                 show(&s.simulated[i]),
                 show(&s.predicted[i]),
                 format_sig(s.gap[i], 2),
-                format!("{:.4}", s.passage_ratio[i]),
             ]);
         }
     }
-    let mut t = markdown_table(
+    markdown_table(
         &[
             "N",
-            "ε",
-            "simulated −η̇⁻/ε⁻¹ (modes 1, 2)",
-            "[R]_N e₁ (modes 1, 2)",
+            "$\\varepsilon$",
+            "simulated $-\\dot\\eta_j^-\\varepsilon$, $j = 1, 2$",
+            "$[R]_N e_1$, modes 1, 2",
             "gap (all modes)",
-            "contact time / πκ^{−1/2}ε",
         ],
         &rows,
-    );
-    t.push('\n');
-    t.push_str(&markdown_table(
-        &[
-            "N",
-            "κ = kNε²",
-            "observed order of the gap (ε ∈ [1e-4, 1e-2])",
-        ],
-        &d.series
-            .iter()
-            .map(|s| {
-                vec![
-                    s.modes.to_string(),
-                    format!("{}", s.kappa),
-                    format!("{:.3}", s.observed_order),
-                ]
-            })
-            .collect::<Vec<_>>(),
-    ));
-    t
+    )
 }

@@ -1,7 +1,10 @@
 //! Figure 3(d): post-impact velocity profiles per N, for the stiffness-limit and the
 //! collocation laws, with the pre-impact profile φ₁ dashed.
 
-use crate::render::{draw_legend, drawing, markdown_table, palette, RenderError, WIDTH};
+use crate::render::{
+    dashed_key, draw_legend, drawing, markdown_table, palette, solid_key, styled_mesh,
+    RenderError, CAPTION_FONT, WIDTH,
+};
 use super::Fig3dData;
 use plotters::prelude::*;
 
@@ -9,7 +12,7 @@ use plotters::prelude::*;
 pub fn plot(d: &Fig3dData) -> Result<String, RenderError> {
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (WIDTH, 440)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, (WIDTH, 520)).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
         let panels = root.split_evenly((1, 2));
         for (i, law) in ["stiffness-limit", "collocation"].iter().enumerate() {
@@ -21,18 +24,23 @@ pub fn plot(d: &Fig3dData) -> Result<String, RenderError> {
                 .chain(d.phi1.iter())
                 .fold((0.0_f64, 0.0_f64), |(a, b), &v| (a.min(v), b.max(v)));
             let title = if i == 0 {
-                "(d) [R]_N, eq (29)"
+                "(d) stiffness limit, eq (29)"
             } else {
-                "[R]_C, eq (12), equally spaced points"
+                "collocation, eq (12), equal spacing"
             };
             let mut chart = ChartBuilder::on(&panels[i])
-                .caption(format!("{title}: post-impact w_t(s)"), ("sans-serif", 16))
+                .caption(title, CAPTION_FONT)
                 .margin(8)
-                .x_label_area_size(32)
-                .y_label_area_size(44)
+                .margin_right(28)
+                .x_label_area_size(44)
+                .y_label_area_size(56)
                 .build_cartesian_2d(0.0..1.0, (lo - 0.2)..(hi + 0.2))
                 .map_err(drawing)?;
-            chart.configure_mesh().x_desc("s").draw().map_err(drawing)?;
+            styled_mesh(&mut chart)
+                .x_desc("s (along the beam)")
+                .y_desc("post-impact velocity")
+                .draw()
+                .map_err(drawing)?;
             chart
                 .draw_series(DashedLineSeries::new(
                     d.s.iter().cloned().zip(d.phi1.iter().cloned()),
@@ -42,7 +50,7 @@ pub fn plot(d: &Fig3dData) -> Result<String, RenderError> {
                 ))
                 .map_err(drawing)?
                 .label("pre-impact φ₁")
-                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK));
+                .legend(dashed_key(BLACK.stroke_width(1)));
             for (j, p) in profiles.iter().enumerate() {
                 let Some(values) = &p.values else { continue };
                 let c = palette(j);
@@ -53,7 +61,7 @@ pub fn plot(d: &Fig3dData) -> Result<String, RenderError> {
                     ))
                     .map_err(drawing)?
                     .label(format!("N = {}", p.modes))
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c));
+                    .legend(solid_key(c.stroke_width(2)));
             }
             draw_legend(&mut chart, SeriesLabelPosition::LowerLeft)?;
         }
@@ -62,20 +70,26 @@ pub fn plot(d: &Fig3dData) -> Result<String, RenderError> {
     Ok(svg)
 }
 
-/// The markdown table.
+/// The markdown table: the distances (the verdict) first, then the profile at the probes.
 pub fn table(d: &Fig3dData) -> String {
-    let mut header = vec!["law".to_string(), "N".to_string()];
-    header.extend(d.params.probes.iter().map(|s| format!("w_t({s})")));
-    header.extend([
-        "L² norm".to_string(),
-        "L² distance from φ₁".to_string(),
-        "max over s of the distance from φ₁".to_string(),
-    ]);
+    let mut header = vec![
+        "law".to_string(),
+        "N".to_string(),
+        "$L^2$ distance from $\\phi_1$".to_string(),
+        "largest distance from $\\phi_1$".to_string(),
+        "$L^2$ norm".to_string(),
+    ];
+    header.extend(d.params.probes.iter().map(|s| format!("$w_t({s})$")));
     let rows: Vec<Vec<String>> = d
         .profiles
         .iter()
         .map(|p| {
-            let mut r = vec![p.law.clone(), p.modes.to_string()];
+            let law = match p.law.as_str() {
+                "stiffness-limit" => "$[R]_N$".to_string(),
+                "collocation" => "$[R]_C$".to_string(),
+                other => other.to_string(),
+            };
+            let mut r = vec![law, p.modes.to_string()];
             match &p.error {
                 Some(e) => {
                     r.push(format!("not built: {e}"));
@@ -85,12 +99,12 @@ pub fn table(d: &Fig3dData) -> String {
                     ));
                 }
                 None => {
-                    r.extend(p.at_probes.iter().map(|v| format!("{v:.5}")));
                     r.extend([
-                        format!("{:.5}", p.l2_norm),
                         format!("{:.5}", p.l2_distance),
                         format!("{:.4}", p.max_distance),
+                        format!("{:.5}", p.l2_norm),
                     ]);
+                    r.extend(p.at_probes.iter().map(|v| format!("{v:.4}")));
                 }
             }
             r

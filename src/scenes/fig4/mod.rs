@@ -485,6 +485,8 @@ impl Scene for Fig4 {
     }
 
     fn render(d: &Fig4Data) -> Result<Rendered, crate::render::RenderError> {
-        Ok(Rendered::new(render::plot(d)?, render::table(d)))
+        let mut r = Rendered::new(render::plot(d)?, render::table(d));
+        r.extra_tables.push(("robustness", render::robustness_table(d)));
+        Ok(r)
     }
 }

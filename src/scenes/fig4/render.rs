@@ -1,7 +1,7 @@
 //! Figure 4: one period of each orbit — tip displacement against time and the phase
 //! portrait — free flight in blue, contact in red.
 
-use crate::render::{drawing, markdown_table, RenderError, WIDTH};
+use crate::render::{drawing, markdown_table, styled_mesh, RenderError, CAPTION_FONT, WIDTH};
 use crate::orbit::OrbitKind;
 use crate::report::format_sig;
 use super::Fig4Data;
@@ -29,7 +29,7 @@ pub fn plot(d: &Fig4Data) -> Result<String, RenderError> {
     let mut svg = String::new();
     {
         let root =
-            SVGBackend::with_string(&mut svg, (WIDTH, 260 * rows as u32)).into_drawing_area();
+            SVGBackend::with_string(&mut svg, (WIDTH, 330 * rows as u32)).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
         let cells = root.split_evenly((rows, 2));
         for (r, p) in d.panels.iter().enumerate() {
@@ -50,16 +50,16 @@ pub fn plot(d: &Fig4Data) -> Result<String, RenderError> {
             let (vlo, vhi) = pad(vmin, vmax);
             let title = format!("N = {}: {} (paper {})", p.modes, p.kind, p.paper);
             let mut chart = ChartBuilder::on(&cells[2 * r])
-                .caption(format!("{title} — tip displacement"), ("sans-serif", 16))
+                .caption(title, CAPTION_FONT)
                 .margin(6)
-                .x_label_area_size(30)
-                .y_label_area_size(50)
+                .margin_right(28)
+                .x_label_area_size(44)
+                .y_label_area_size(64)
                 .build_cartesian_2d(0.0..span, dlo..dhi)
                 .map_err(drawing)?;
-            chart
-                .configure_mesh()
+            styled_mesh(&mut chart)
                 .x_desc("t / T")
-                .y_desc("d / A_free")
+                .y_desc("tip d / free amplitude")
                 .draw()
                 .map_err(drawing)?;
             let td: Vec<(f64, f64, bool)> = p.series.iter().map(|s| (s.0, s.1, s.3)).collect();
@@ -76,19 +76,16 @@ pub fn plot(d: &Fig4Data) -> Result<String, RenderError> {
                 ))
                 .map_err(drawing)?;
             let mut chart = ChartBuilder::on(&cells[2 * r + 1])
-                .caption(
-                    format!("N = {}: phase portrait", p.modes),
-                    ("sans-serif", 16),
-                )
+                .caption(format!("N = {}: phase portrait", p.modes), CAPTION_FONT)
                 .margin(6)
-                .x_label_area_size(30)
-                .y_label_area_size(50)
+                .margin_right(28)
+                .x_label_area_size(44)
+                .y_label_area_size(64)
                 .build_cartesian_2d(dlo..dhi, vlo..vhi)
                 .map_err(drawing)?;
-            chart
-                .configure_mesh()
-                .x_desc("d / A_free")
-                .y_desc("ḋ / (ω A_free)")
+            styled_mesh(&mut chart)
+                .x_desc("tip d / free amplitude")
+                .y_desc("ḋ / (ω · free amplitude)")
                 .draw()
                 .map_err(drawing)?;
             let dv: Vec<(f64, f64, bool)> = p.series.iter().map(|s| (s.1, s.2, s.3)).collect();
@@ -111,7 +108,8 @@ fn kinds(v: &[(OrbitKind, usize)]) -> String {
         .join(", ")
 }
 
-/// The markdown tables: orbits against the paper, then the robustness checks.
+/// The markdown table of what each orbit does in one period (the verdicts are in the
+/// chapter, by name).
 pub fn table(d: &Fig4Data) -> String {
     let rows: Vec<Vec<String>> = d
         .panels
@@ -119,75 +117,82 @@ pub fn table(d: &Fig4Data) -> String {
         .map(|p| {
             vec![
                 p.modes.to_string(),
-                p.paper.to_string(),
                 p.kind.to_string(),
-                if p.kind == p.paper {
-                    "reproduced".into()
-                } else {
-                    "**not reproduced**".into()
-                },
-                format_sig(p.residual, 1),
                 p.impact_velocities
                     .iter()
                     .map(|v| format!("{v:.4}"))
                     .collect::<Vec<_>>()
-                    .join(", "),
+                    .join("<br>"),
                 p.contacts
                     .iter()
                     .map(|(a, b)| format!("{a:.4}–{b:.4}"))
                     .collect::<Vec<_>>()
-                    .join(", "),
+                    .join("<br>"),
                 format!("{:.4}", p.max_tip),
                 p.dwell_depth.map_or("—".into(), |d| format!("{d:.4}")),
             ]
         })
         .collect();
-    let mut s = markdown_table(
-        &[
-            "N",
-            "paper",
-            "ours",
-            "verdict",
-            "residual",
-            "impact velocities / (ωA_free)",
-            "contact intervals (t/T)",
-            "max tip / A_free",
-            "dwell depth / A_free (sampled)",
-        ],
-        &rows,
-    );
-    s.push('\n');
-    let rows: Vec<Vec<String>> = d
-        .panels
-        .iter()
-        .map(|p| {
-            let e = &p.evidence;
-            vec![
-                p.modes.to_string(),
-                p.kind.to_string(),
-                e.long_transient.to_string(),
-                e.loose_tolerance.to_string(),
-                match e.reference {
-                    None => "skipped".into(),
-                    Some((n, Some(dt))) => format!("n = {n}, Δt ≤ {}", format_sig(dt, 1)),
-                    Some((n, None)) => format!("n = {n}, event counts differ"),
-                },
-                kinds(&e.random_starts),
-                e.literal_caption.to_string(),
-            ]
-        })
-        .collect();
-    s.push_str(&markdown_table(
+    markdown_table(
         &[
             "N",
             "orbit",
-            &format!("after {} periods", d.params.long_transient),
-            &format!("root tol {:e}", d.params.loose_root_tolerance),
-            "DP5 reference",
-            &format!("{} random starts", d.params.random_starts),
-            "ζ₁ ≈ 0.124 (literal caption)",
+            "impact velocities / $(\\omega A_{\\rm free})$",
+            "contact intervals ($t/T$)",
+            "max tip / $A_{\\rm free}$",
+            "dwell depth / $A_{\\rm free}$",
         ],
         &rows,
-    ));
-    s
+    )
+}
+
+/// The robustness checks: one row per check, one column per N (narrow enough for a page).
+pub fn robustness_table(d: &Fig4Data) -> String {
+    let per_case = |f: &dyn Fn(&super::Fig4Panel) -> String| -> Vec<String> {
+        d.panels.iter().map(f).collect()
+    };
+    let mut rows: Vec<Vec<String>> = Vec::new();
+    let mut row = |label: String, cells: Vec<String>| {
+        rows.push(std::iter::once(label).chain(cells).collect());
+    };
+    row(
+        format!("orbit after {} periods", d.params.transient),
+        per_case(&|p| p.kind.to_string()),
+    );
+    row(
+        format!("after {} periods", d.params.long_transient),
+        per_case(&|p| p.evidence.long_transient.to_string()),
+    );
+    row(
+        format!("root tolerance {:e}", d.params.loose_root_tolerance),
+        per_case(&|p| p.evidence.loose_tolerance.to_string()),
+    );
+    row(
+        "DP5 reference: contacts per period".into(),
+        per_case(&|p| match p.evidence.reference {
+            None => "skipped".into(),
+            Some((n, _)) => n.to_string(),
+        }),
+    );
+    row(
+        "DP5 reference: largest event-time difference".into(),
+        per_case(&|p| match p.evidence.reference {
+            Some((_, Some(dt))) => format!("≤ {}", format_sig(dt, 1)),
+            Some((_, None)) => "event counts differ".into(),
+            None => "—".into(),
+        }),
+    );
+    row(
+        format!("{} random starts reach", d.params.random_starts),
+        per_case(&|p| kinds(&p.evidence.random_starts).replace(", ", "<br>")),
+    );
+    row(
+        "damping read as ζ₁ ≈ 0.124 (literal caption)".into(),
+        per_case(&|p| p.evidence.literal_caption.to_string()),
+    );
+    let header: Vec<String> = std::iter::once("check".to_string())
+        .chain(d.panels.iter().map(|p| format!("N = {}", p.modes)))
+        .collect();
+    let h: Vec<&str> = header.iter().map(String::as_str).collect();
+    markdown_table(&h, &rows)
 }

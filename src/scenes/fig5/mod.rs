@@ -602,6 +602,9 @@ impl Scene for Fig5 {
     }
 
     fn render(d: &Fig5Data) -> Result<Rendered, crate::render::RenderError> {
-        Ok(Rendered::new(render::plot(d)?, render::table(d)))
+        let mut r = Rendered::new(render::plot(d)?, render::table(d));
+        r.extra_tables
+            .push(("transitions", render::transitions_table(d)));
+        Ok(r)
     }
 }

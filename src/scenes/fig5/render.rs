@@ -1,7 +1,8 @@
 //! Figure 5: impact velocities on the impact section against k, one panel per N.
 
 use crate::render::{
-    cell, draw_legend, drawing, markdown_table, RenderError, AXIS_FONT, LABEL_FONT, WIDTH,
+    cell, dashed_key, draw_legend, drawing, markdown_table, styled_mesh, RenderError,
+    CAPTION_FONT, LABEL_FONT, WIDTH,
 };
 use super::Fig5Data;
 use plotters::prelude::*;
@@ -32,20 +33,19 @@ pub fn plot(d: &Fig5Data) -> Result<String, RenderError> {
             let vmax = vmax.max(1e-9);
             let mut chart = ChartBuilder::on(&panels[p])
                 .caption(
-                    format!("{} N = {}: impact velocity / ωA", letters[p % 6], g.modes),
-                    ("sans-serif", 20),
+                    format!("{} N = {}", letters[p % 6], g.modes),
+                    CAPTION_FONT,
                 )
                 .margin(8)
-                .x_label_area_size(40)
-                .y_label_area_size(60)
+                .margin_right(28)
+                .x_label_area_size(44)
+                .y_label_area_size(64)
                 .build_cartesian_2d((lo..hi).log_scale(), 0.0..vmax)
                 .map_err(drawing)?;
-            chart
-                .configure_mesh()
+            styled_mesh(&mut chart)
                 .x_desc("k / k₁")
+                .y_desc("impact velocity / (ω · free amplitude)")
                 .x_label_formatter(&|x| format!("{x:.0e}"))
-                .label_style(LABEL_FONT)
-                .axis_desc_style(AXIS_FONT)
                 .draw()
                 .map_err(drawing)?;
             let quantum = 1e-3 * vmax;
@@ -76,11 +76,7 @@ pub fn plot(d: &Fig5Data) -> Result<String, RenderError> {
                 ))
                 .map_err(drawing)?
                 .label("k₂")
-                .legend(|(x, y)| {
-                    EmptyElement::at((x, y))
-                        + PathElement::new(vec![(0, 0), (7, 0)], RGBColor(213, 40, 0).stroke_width(2))
-                        + PathElement::new(vec![(12, 0), (19, 0)], RGBColor(213, 40, 0).stroke_width(2))
-                });
+                .legend(dashed_key(RGBColor(213, 40, 0).stroke_width(2)));
             if g.modes == 1 {
                 if let Some(r) = &d.rigid_limit {
                     chart
@@ -99,8 +95,8 @@ pub fn plot(d: &Fig5Data) -> Result<String, RenderError> {
     Ok(svg)
 }
 
-/// The markdown tables: orbit-set transitions per N, and the measured claims.
-pub fn table(d: &Fig5Data) -> String {
+/// Where the set of orbits reached changes along k, for each N.
+pub fn transitions_table(d: &Fig5Data) -> String {
     let mut rows = Vec::new();
     for (g, (n, ts)) in d.diagrams.iter().zip(&d.transitions) {
         let first = g
@@ -128,11 +124,14 @@ pub fn table(d: &Fig5Data) -> String {
             ]);
         }
     }
-    let mut s = markdown_table(&["N", "orbits reached (all starts)", "between k/k₁"], &rows);
+    markdown_table(&["N", "orbits reached (all starts)", "between k/k₁"], &rows)
+}
+
+/// The measured claims.
+pub fn table(d: &Fig5Data) -> String {
     let c = &d.claims;
     let opt = |v: Option<f64>| v.map_or("never".to_string(), |k| cell(k, 3));
-    s.push('\n');
-    s.push_str(&markdown_table(
+    markdown_table(
         &["claim", "measured"],
         &[
             vec![
@@ -195,6 +194,5 @@ pub fn table(d: &Fig5Data) -> String {
                 },
             ],
         ],
-    ));
-    s
+    )
 }

@@ -2,22 +2,26 @@
 //! error against ε (right) — and its table.
 
 use super::RestitutionData;
-use crate::render::{cell, draw_legend, drawing, markdown_table, mesh, palette, RenderError, WIDTH};
+use crate::render::{
+    cell, draw_legend, drawing, log_log_mesh, markdown_table, palette, solid_key, RenderError,
+    CAPTION_FONT, WIDTH,
+};
 use plotters::prelude::*;
 
 /// The SVG plot.
 pub fn plot(d: &RestitutionData) -> Result<String, RenderError> {
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (WIDTH, 440)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, (WIDTH, 500)).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
         let (left, right) = root.split_horizontally(WIDTH / 2);
         let ks = &d.params.nordmark_k;
         let gaps = d.nordmark.iter().flat_map(|n| n.gap.iter().cloned());
         let (lo, hi) = gaps.fold((f64::INFINITY, 0.0f64), |(a, b), g| (a.min(g), b.max(g)));
         let mut chart = ChartBuilder::on(&left)
-            .caption("N = 1: compliant vs rigid impact velocity", ("sans-serif", 20))
+            .caption("N = 1: compliant against rigid impact", CAPTION_FONT)
             .margin(10)
+            .margin_right(28)
             .x_label_area_size(44)
             .y_label_area_size(70)
             .build_cartesian_2d(
@@ -25,7 +29,7 @@ pub fn plot(d: &RestitutionData) -> Result<String, RenderError> {
                 (lo * 0.5..hi * 2.0).log_scale(),
             )
             .map_err(drawing)?;
-        mesh(&mut chart, "k / k₁", "gap / (ω A)")?;
+        log_log_mesh(&mut chart, "k / k₁", "velocity gap / (ω · free amplitude)")?;
         for (i, n) in d.nordmark.iter().enumerate() {
             let c = palette(i);
             chart
@@ -35,7 +39,7 @@ pub fn plot(d: &RestitutionData) -> Result<String, RenderError> {
                 ))
                 .map_err(drawing)?
                 .label(format!("ω = {}(β₁⁻)², slope {:.2}", n.omega_over_w1, n.rate.0))
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2)));
+                .legend(solid_key(c.stroke_width(2)));
             chart
                 .draw_series(ks.iter().zip(&n.gap).map(|(&k, &g)| Circle::new((k, g), 4, c.filled())))
                 .map_err(drawing)?;
@@ -47,8 +51,9 @@ pub fn plot(d: &RestitutionData) -> Result<String, RenderError> {
             .iter()
             .fold((f64::INFINITY, 0.0f64), |(a, b), g| (a.min(*g), b.max(*g)));
         let mut chart = ChartBuilder::on(&right)
-            .caption("r_e (eq 19) against the exact ratio", ("sans-serif", 20))
+            .caption("rₑ (eq 19) against the exact ratio", CAPTION_FONT)
             .margin(10)
+            .margin_right(28)
             .x_label_area_size(44)
             .y_label_area_size(70)
             .build_cartesian_2d(
@@ -56,7 +61,7 @@ pub fn plot(d: &RestitutionData) -> Result<String, RenderError> {
                 (elo * 0.5..ehi * 2.0).log_scale(),
             )
             .map_err(drawing)?;
-        mesh(&mut chart, "ε", "|r_e − exact|")?;
+        log_log_mesh(&mut chart, "ε", "|rₑ − exact|")?;
         chart
             .draw_series(LineSeries::new(
                 eps.iter().cloned().zip(d.re_error.iter().cloned()),
@@ -92,11 +97,11 @@ pub fn table(d: &RestitutionData) -> String {
     }
     markdown_table(
         &[
-            "ω/(β₁⁻)²",
-            "k/k₁",
+            "$\\omega/(\\beta_1^-)^2$",
+            "$k/k_1$",
             "compliant orbit",
-            "impact velocity / (ωA)",
-            "rigid limit / (ωA)",
+            "impact velocity / $(\\omega A_{\\rm free})$",
+            "rigid limit / $(\\omega A_{\\rm free})$",
             "gap",
         ],
         &rows,

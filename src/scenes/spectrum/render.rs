@@ -1,32 +1,33 @@
 //! The continuum spectrum: (β_i^+)² across k with the small-k law (4) and the
 //! clamped-pinned asymptotes; the remainder of (4) against k.
 
-use crate::render::{cell, draw_legend, drawing, markdown_table, palette, RenderError, WIDTH};
+use crate::render::{
+    cell, dashed_key, draw_legend, drawing, markdown_table, palette, solid_key, styled_mesh,
+    RenderError, CAPTION_FONT, WIDTH,
+};
 use crate::report::format_sig;
 use super::SpectrumData;
+use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 
 /// The SVG plot.
 pub fn plot(d: &SpectrumData) -> Result<String, RenderError> {
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (WIDTH, 440)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, (WIDTH, 520)).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
         let (left, right) = root.split_horizontally(600);
         let (lo, hi) = d.params.k_over_k1_range;
         let ymax = d.frequency_pinned.last().copied().unwrap_or(10.0) * 1.3;
         let mut chart = ChartBuilder::on(&left)
-            .caption(
-                "(β_i⁺)² / (β₁⁻)² against k (dashed: eq 4)",
-                ("sans-serif", 18),
-            )
+            .caption("frequencies (βᵢ⁺)² / (β₁⁻)²", CAPTION_FONT)
             .margin(8)
-            .x_label_area_size(36)
-            .y_label_area_size(48)
+            .margin_right(28)
+            .x_label_area_size(44)
+            .y_label_area_size(56)
             .build_cartesian_2d((lo..hi).log_scale(), (0.8..ymax).log_scale())
             .map_err(drawing)?;
-        chart
-            .configure_mesh()
+        styled_mesh(&mut chart)
             .x_desc("k / k₁")
             .x_label_formatter(&|x| format!("{x:.0e}"))
             .draw()
@@ -40,7 +41,7 @@ pub fn plot(d: &SpectrumData) -> Result<String, RenderError> {
                 ))
                 .map_err(drawing)?
                 .label(format!("i = {}", i + 1))
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c));
+                .legend(solid_key(c.stroke_width(2)));
             let small: Vec<(f64, f64)> = d
                 .k_over_k1
                 .iter()
@@ -48,10 +49,14 @@ pub fn plot(d: &SpectrumData) -> Result<String, RenderError> {
                 .zip(d.frequency_small_k[i].iter().cloned())
                 .filter(|p| p.1 < ymax)
                 .collect();
-            chart
+            let law = chart
                 .draw_series(DashedLineSeries::new(small, 5, 4, c.stroke_width(1)))
                 .map_err(drawing)?;
-            chart
+            if i == 0 {
+                law.label("small-k law, eq (4)")
+                    .legend(dashed_key(BLACK.stroke_width(1)));
+            }
+            let pinned = chart
                 .draw_series(DashedLineSeries::new(
                     vec![(lo, d.frequency_pinned[i]), (hi, d.frequency_pinned[i])],
                     2,
@@ -59,6 +64,18 @@ pub fn plot(d: &SpectrumData) -> Result<String, RenderError> {
                     BLACK.mix(0.5).stroke_width(1),
                 ))
                 .map_err(drawing)?;
+            if i == 0 {
+                pinned
+                    .label("clamped-pinned (k = ∞)")
+                    .legend(|(x, y)| {
+                        DashedPathElement::new(
+                            vec![(x, y), (x + 24, y)],
+                            2,
+                            4,
+                            BLACK.mix(0.5).stroke_width(1),
+                        )
+                    });
+            }
         }
         draw_legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
 
@@ -68,14 +85,14 @@ pub fn plot(d: &SpectrumData) -> Result<String, RenderError> {
         let rmax = s.remainder.iter().map(|r| r.abs()).fold(0.0, f64::max) * 10.0;
         let rmin = s.remainder.iter().map(|r| r.abs()).fold(f64::MAX, f64::min) / 10.0;
         let mut chart = ChartBuilder::on(&right)
-            .caption("remainder of eq (4), mode 1", ("sans-serif", 18))
+            .caption("remainder of eq (4), mode 1", CAPTION_FONT)
             .margin(8)
-            .x_label_area_size(36)
-            .y_label_area_size(56)
+            .margin_right(28)
+            .x_label_area_size(44)
+            .y_label_area_size(64)
             .build_cartesian_2d((xmin..xmax).log_scale(), (rmin..rmax).log_scale())
             .map_err(drawing)?;
-        chart
-            .configure_mesh()
+        styled_mesh(&mut chart)
             .x_desc("k / k₁")
             .y_desc("|(β₁⁺)⁴ − (β₁⁻)⁴ − k|")
             .x_label_formatter(&|x| format!("{x:.0e}"))
@@ -99,7 +116,7 @@ pub fn plot(d: &SpectrumData) -> Result<String, RenderError> {
             ))
             .map_err(drawing)?
             .label("second-order theory, c·k²")
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], palette(1)));
+            .legend(solid_key(palette(1).stroke_width(1)));
         draw_legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
         root.present().map_err(drawing)?;
     }
@@ -133,7 +150,7 @@ pub fn table(d: &SpectrumData) -> String {
         ]);
     }
     let mut s = markdown_table(
-        &["stop", "i", "β_i (ours)", "β_i (golden)", "rel. diff."],
+        &["stop", "i", "$\\beta_i$ (ours)", "$\\beta_i$ (golden)", "rel. diff."],
         &rows,
     );
     s.push_str(&format!("\nGolden source: {}.\n\n", d.golden_source));
@@ -141,18 +158,18 @@ pub fn table(d: &SpectrumData) -> String {
     s.push_str(&markdown_table(
         &["quantity", "value"],
         &[
-            vec!["k₁ = (β₁⁻)⁴".into(), cell(d.k1, 12)],
-            vec!["k₂/k₁".into(), cell(d.k2_over_k1, 8)],
+            vec!["$k_1 = (\\beta_1^-)^4$".into(), cell(d.k1, 12)],
+            vec!["$k_2/k_1$".into(), cell(d.k2_over_k1, 8)],
             vec![
-                "fitted order of the remainder of (4)".into(),
+                "fitted order of the remainder of eq (4)".into(),
                 cell(sk.fitted_order, 4),
             ],
             vec![
-                "remainder / k² at smallest k".into(),
+                "remainder / $k^2$ at the smallest $k$".into(),
                 format_sig(sk.fitted_coefficient, 5),
             ],
             vec![
-                "second-order theory −Σ_{j≠1} 1/(k_j − k₁)".into(),
+                "second-order theory $-\\sum_{j\\ne1} 1/(k_j - k_1)$".into(),
                 format_sig(sk.predicted_coefficient, 5),
             ],
         ],

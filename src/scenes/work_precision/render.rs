@@ -1,7 +1,10 @@
 //! Error against run time: event-time error and end-state error against wall time, one
 //! series per method.
 
-use crate::render::{draw_legend, drawing, markdown_table, palette, RenderError, WIDTH};
+use crate::render::{
+    draw_legend, drawing, markdown_table, palette, solid_key, styled_mesh, RenderError,
+    CAPTION_FONT, WIDTH,
+};
 use crate::report::format_sig;
 use super::WorkPrecisionData;
 use plotters::prelude::*;
@@ -13,7 +16,7 @@ const FLOOR: f64 = 1e-16;
 pub fn plot(d: &WorkPrecisionData) -> Result<String, RenderError> {
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (WIDTH, 440)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, (WIDTH, 500)).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
         let panels = root.split_evenly((1, 2));
         let (tmin, tmax) = d.points.iter().fold((f64::MAX, 0.0_f64), |(a, b), p| {
@@ -33,17 +36,17 @@ pub fn plot(d: &WorkPrecisionData) -> Result<String, RenderError> {
                 .collect();
             let emax = finite.iter().cloned().fold(FLOOR, f64::max) * 10.0;
             let mut chart = ChartBuilder::on(panel)
-                .caption(titles[i], ("sans-serif", 18))
+                .caption(titles[i], CAPTION_FONT)
                 .margin(10)
-                .x_label_area_size(36)
-                .y_label_area_size(56)
+                .margin_right(28)
+                .x_label_area_size(44)
+                .y_label_area_size(64)
                 .build_cartesian_2d(
                     (tmin / 2.0..tmax * 2.0).log_scale(),
                     (FLOOR / 2.0..emax).log_scale(),
                 )
                 .map_err(drawing)?;
-            chart
-                .configure_mesh()
+            styled_mesh(&mut chart)
                 .x_desc("wall time (s)")
                 .x_label_formatter(&|x| format!("{x:.0e}"))
                 .y_label_formatter(&|y| format!("{y:.0e}"))
@@ -61,7 +64,7 @@ pub fn plot(d: &WorkPrecisionData) -> Result<String, RenderError> {
                     .draw_series(LineSeries::new(pts.clone(), c.stroke_width(2)))
                     .map_err(drawing)?
                     .label(*method)
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c));
+                    .legend(solid_key(c.stroke_width(2)));
                 chart
                     .draw_series(pts.iter().map(|&p| Circle::new(p, 4, c.filled())))
                     .map_err(drawing)?;
@@ -82,20 +85,25 @@ pub fn table(d: &WorkPrecisionData) -> String {
             vec![
                 p.method.clone(),
                 format_sig(p.tolerance, 1),
-                format!("{:.2}", p.seconds * 1e3),
-                p.events.to_string(),
-                if p.same_sequence {
-                    "yes".into()
-                } else {
-                    "**no**".into()
-                },
-                if p.event_error.is_finite() {
-                    format_sig(p.event_error, 2)
-                } else {
+                if !p.event_error.is_finite() {
                     "—".into()
+                } else if p.event_error == 0.0 {
+                    "0".into()
+                } else {
+                    format_sig(p.event_error, 2)
                 },
-                format_sig(p.state_error, 2),
+                if p.state_error == 0.0 {
+                    "0".into()
+                } else {
+                    format_sig(p.state_error, 2)
+                },
+                format!("{:.2}", p.seconds * 1e3),
                 p.evaluations.to_string(),
+                if p.same_sequence {
+                    format!("{}, same", p.events)
+                } else {
+                    format!("**{}, differ**", p.events)
+                },
             ]
         })
         .collect();
@@ -103,12 +111,11 @@ pub fn table(d: &WorkPrecisionData) -> String {
         &[
             "method",
             "tolerance",
-            "wall time (ms)",
-            "events",
-            "same sequence",
             "event-time error",
             "end-state error",
+            "wall time (ms)",
             "evaluations",
+            "switches (vs reference)",
         ],
         &rows,
     )
