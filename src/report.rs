@@ -208,6 +208,27 @@ impl KeyNumbers {
         ));
     }
 
+    /// Adds the unit of a forced scene's lengths and velocities: the free tip amplitude
+    /// A_free at the scene's ω (keys `"{prefix}A_free"` and `"{prefix}omega A_free"`), in the
+    /// model's length unit, the free tip amplitude at resonance.
+    pub fn free_amplitude(&mut self, prefix: &str, (a_free, v_free): (f64, f64)) {
+        let basis = "closed form of the linear steady response (round-off)";
+        self.cited(
+            format!("{prefix}A_free"),
+            a_free,
+            6,
+            Uncertainty::new(a_free * 1e-15, basis),
+            "× the free tip amplitude at resonance",
+        );
+        self.cited(
+            format!("{prefix}omega A_free"),
+            v_free,
+            6,
+            Uncertainty::new(v_free * 1e-15, basis),
+            "× the free tip amplitude at resonance per unit time",
+        );
+    }
+
     /// Adds an integer.
     pub fn integer(&mut self, name: impl Into<String>, value: i64) {
         self.0.push((name.into(), KeyValue::Integer(value)));

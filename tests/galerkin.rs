@@ -226,3 +226,17 @@ fn sign_convention_of_phi() {
         assert!((psi.value(1.0) - 2.0 * sign).abs() < 1e-13);
     }
 }
+
+/// The unit of the forced scenes' plots, A_free, is one number for every truncation: the
+/// forcing of eq (37) has mode 1's shape, so only mode 1 is forced (to quadrature
+/// round-off), and mode 1's free dynamics do not depend on N.
+#[test]
+fn the_free_tip_amplitude_does_not_depend_on_the_truncation() {
+    use impacting_cantilever::problems;
+    let a1 = problems::figure4(1).model().unwrap().free_tip_amplitude();
+    for n in [2, 3, 10, 40] {
+        let an = problems::figure4(n).model().unwrap().free_tip_amplitude();
+        assert!((an.0 / a1.0 - 1.0).abs() < 1e-12, "N={n}: {an:?} vs {a1:?}");
+        assert!((an.1 / a1.1 - 1.0).abs() < 1e-12, "N={n}");
+    }
+}

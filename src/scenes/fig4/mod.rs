@@ -335,11 +335,8 @@ impl Scene for Fig4 {
 
     fn key_numbers(d: &Fig4Data) -> KeyNumbers {
         let mut k = KeyNumbers::default();
-        let (a_free, v_free) = d.free_amplitude;
-        // the plot units, in the model's length unit (the free tip amplitude at resonance)
-        let units = || Uncertainty::new(1e-15, "closed form of the linear response (round-off)");
-        k.cited("A_free", a_free, 6, Uncertainty::new(a_free * 1e-15, units().basis), "× the free tip amplitude at resonance");
-        k.cited("omega A_free", v_free, 6, Uncertainty::new(v_free * 1e-15, units().basis), "× the free tip amplitude at resonance per unit time");
+        // the plot units (the same for every N: the forcing has mode 1's shape)
+        k.free_amplitude("", d.free_amplitude);
         for p in &d.panels {
             let key = format!("N={}", p.modes);
             k.text(format!("{key} orbit"), p.kind.to_string());

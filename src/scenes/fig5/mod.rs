@@ -193,6 +193,10 @@ pub struct Fig5Data {
     pub claims: Claims,
     /// The rigid limit of the N = 1 diagram (when N = 1 is swept).
     pub rigid_limit: Option<RigidLimit>,
+    /// The velocity unit: the free tip amplitude A_free and ωA_free at this ω (the same for
+    /// every N and k: the forcing has mode 1's shape, and mode 1 does not feel k in free
+    /// flight).
+    pub free_amplitude: (f64, f64),
 }
 
 /// The N = 1 model's k → ∞ limit: the impact oscillator with Newton's law, r = 1 (the
@@ -334,6 +338,13 @@ pub fn compute(p: &Fig5Params, progress: &(dyn Fn() + Sync)) -> Result<Fig5Data,
         }
         None => None,
     };
+    let unit = Forced {
+        zeta1: p.zeta1,
+        omega_over_w1: p.omega_over_w1,
+        ..problems::figure4(1)
+    }
+    .model()?
+    .free_tip_amplitude();
     Ok(Fig5Data {
         params: p.clone(),
         k_over_k1: grid,
@@ -341,6 +352,7 @@ pub fn compute(p: &Fig5Params, progress: &(dyn Fn() + Sync)) -> Result<Fig5Data,
         transitions,
         claims,
         rigid_limit,
+        free_amplitude: unit,
     })
 }
 
@@ -460,6 +472,7 @@ impl Scene for Fig5 {
 
     fn key_numbers(d: &Fig5Data) -> KeyNumbers {
         let mut k = KeyNumbers::default();
+        k.free_amplitude("", d.free_amplitude);
         for g in &d.diagrams {
             // the orbit sets along k, exactly (integers): the diagram's skeleton
             let sets: Vec<String> = (0..d.k_over_k1.len())

@@ -71,6 +71,8 @@ pub struct Nordmark {
     pub gap: Vec<f64>,
     /// The slope of log gap against log k, with its standard error.
     pub rate: (f64, f64),
+    /// The velocity unit: A_free and ωA_free at this ω.
+    pub free_amplitude: (f64, f64),
 }
 
 /// The scene's result.
@@ -106,7 +108,8 @@ fn nordmark(p: &RestitutionParams, omega: f64) -> Result<Nordmark, Error> {
         ..problems::figure4(1)
     };
     let model = case(1.0).model()?;
-    let (_, vamp) = model.free_tip_amplitude();
+    let free_amplitude = model.free_tip_amplitude();
+    let vamp = free_amplitude.1;
     let sim = Simulator::new(model)?;
     let period = sim.period();
     let rigid = RigidImpact::new(sim, impulse_response(1, 1.0)?)?;
@@ -149,6 +152,7 @@ fn nordmark(p: &RestitutionParams, omega: f64) -> Result<Nordmark, Error> {
         compliant,
         gap,
         rate: fitted_slope_with_error(&lx, &ly),
+        free_amplitude,
     })
 }
 
@@ -242,6 +246,7 @@ impl Scene for RestitutionLaws {
         }
         for n in &d.nordmark {
             let key = format!("omega={}", n.omega_over_w1);
+            k.free_amplitude(&format!("{key} "), n.free_amplitude);
             k.text(format!("{key} rigid orbit"), n.rigid_kind.to_string());
             let settled = |v: f64| Uncertainty::new(1e-9 * v.abs(), "velocity on an orbit settled to 1e-9");
             k.cited(format!("{key} rigid impact velocity"), n.rigid_velocity, 6, settled(n.rigid_velocity), "ωA_free");
