@@ -23,8 +23,9 @@ fn main() {
     println!("cargo:rustc-env=CANTILEVER_GIT_COMMIT={commit}");
     println!("cargo:rustc-env=CANTILEVER_GIT_DIRTY={dirty}");
     println!("cargo:rustc-env=CANTILEVER_TOOLCHAIN={toolchain}");
-    // rebuild the record when HEAD moves or the index changes
-    for path in [".git/HEAD", ".git/index"] {
+    // rebuild the record when HEAD moves, the index changes or the code that computes the
+    // numbers is edited (otherwise an edit after a commit would still read as clean)
+    for path in [".git/HEAD", ".git/index", "src", "Cargo.toml", "Cargo.lock"] {
         if std::path::Path::new(path).exists() {
             println!("cargo:rerun-if-changed={path}");
         }

@@ -48,18 +48,26 @@ pub fn build(root: &Path, resolution: Resolution, progress: &dyn Progress) -> Re
     let generated = root.join("src").join("generated");
     let scenes = crate::scenes::all();
     let task = progress.task("scenes", scenes.len() as u64);
-    let runs: Vec<Result<(SceneOutput, f64)>> = scenes
+    let run_one = |spec: &&dyn Entry| -> Result<(SceneOutput, f64)> {
+        let t = Instant::now();
+        let out = spec
+            .run(resolution, progress)
+            .with_context(|| format!("scene {}", spec.name()))?;
+        scene::write(*spec, &out, &generated.join(spec.name()))?;
+        task.advance(1);
+        Ok((out, t.elapsed().as_secs_f64()))
+    };
+    // scenes that time themselves run alone, after the others (both cores otherwise)
+    let mut runs: Vec<Option<Result<(SceneOutput, f64)>>> = scenes
         .par_iter()
-        .map(|spec| {
-            let t = Instant::now();
-            let out = spec
-                .run(resolution, progress)
-                .with_context(|| format!("scene {}", spec.name()))?;
-            scene::write(*spec, &out, &generated.join(spec.name()))?;
-            task.advance(1);
-            Ok((out, t.elapsed().as_secs_f64()))
-        })
+        .map(|spec| (!spec.timed()).then(|| run_one(spec)))
         .collect();
+    for (spec, run) in scenes.iter().zip(runs.iter_mut()) {
+        if spec.timed() {
+            *run = Some(run_one(spec));
+        }
+    }
+    let runs: Vec<Result<(SceneOutput, f64)>> = runs.into_iter().flatten().collect();
     drop(task);
     let mut outputs = Vec::new();
     let mut scene_seconds = Vec::new();
@@ -70,7 +78,7 @@ pub fn build(root: &Path, resolution: Resolution, progress: &dyn Progress) -> Re
     }
     scene::write_atomically(
         &generated.join("summary.md"),
-        &summary_table(scenes, &outputs),
+        &summary_table(scenes, &outputs, &|chapter| chapter_title(root, chapter)),
     )?;
     let provenance = outputs
         .first()
@@ -83,6 +91,19 @@ pub fn build(root: &Path, resolution: Resolution, progress: &dyn Progress) -> Re
             .iter()
             .zip(&outputs)
             .map(|(spec, out)| (spec.name().to_string(), out.key_numbers.clone()))
+            .collect(),
+        verdicts: scenes
+            .iter()
+            .zip(&outputs)
+            .map(|(spec, out)| (spec.name().to_string(), out.verdict.clone()))
+            .collect(),
+        data_sizes: scenes
+            .iter()
+            .filter_map(|spec| {
+                let path = generated.join(spec.name()).join("data.json");
+                let bytes = std::fs::metadata(path).ok()?.len();
+                Some((spec.name().to_string(), bytes))
+            })
             .collect(),
         chapters: scenes
             .iter()
@@ -110,7 +131,11 @@ pub fn build(root: &Path, resolution: Resolution, progress: &dyn Progress) -> Re
 /// The landing page's summary: for each result, its verdict, the paper's claim, our
 /// headline numbers with their uncertainties, the evidence, and links to the chapter and the
 /// data. One block per result (a table this wide would hide columns).
-pub fn summary_table(scenes: &[&dyn Entry], outputs: &[SceneOutput]) -> String {
+pub fn summary_table(
+    scenes: &[&dyn Entry],
+    outputs: &[SceneOutput],
+    title: &dyn Fn(&str) -> Option<String>,
+) -> String {
     let mut s = String::new();
     for (spec, out) in scenes.iter().zip(outputs) {
         let numbers: Vec<String> = spec
@@ -124,19 +149,44 @@ pub fn summary_table(scenes: &[&dyn Entry], outputs: &[SceneOutput]) -> String {
             .collect();
         let name = spec.name();
         s.push_str(&format!(
-            "<div class=\"result\">\n\n**[{name}]({})** ({}) — **{}**\n\n\
+            "<div class=\"result\">\n\n**[{}]({})** — **{}**\n\n\
              *The paper:* {}\n\n*Our numbers:* {}.\n\n*Evidence:* {}.\n\n\
              Data: [data.json](generated/{name}/data.json) · \
              [key numbers](generated/{name}/key_numbers.json)\n\n</div>\n\n",
+            title(spec.chapter()).unwrap_or_else(|| spec.paper().to_string()),
             spec.chapter(),
-            spec.paper(),
-            out.verdict.outcome,
+            capitalised(&out.verdict.outcome.to_string()),
             spec.claim(),
             numbers.join("; "),
             out.verdict.evidence
         ));
     }
     s
+}
+
+/// The first heading of chapter file `chapter` under `root/src`.
+fn chapter_title(root: &Path, chapter: &str) -> Option<String> {
+    let text = std::fs::read_to_string(root.join("src").join(chapter)).ok()?;
+    text.lines()
+        .find_map(|l| l.strip_prefix("# "))
+        .map(|t| t.trim().to_string())
+}
+
+/// "partly reproduced" → "Partly reproduced".
+fn capitalised(s: &str) -> String {
+    let mut c = s.chars();
+    c.next()
+        .map(|f| f.to_uppercase().chain(c).collect())
+        .unwrap_or_default()
+}
+
+/// A file size for a link: "640 kB", "15.5 MB".
+fn human_size(bytes: u64) -> String {
+    if bytes < 1_000_000 {
+        format!("{} kB", bytes.div_ceil(1000))
+    } else {
+        format!("{:.1} MB", bytes as f64 / 1e6)
+    }
 }
 
 /// A key number's prose for a page: the unit's subscript as HTML (`A_free` would show its
@@ -153,7 +203,10 @@ pub fn citation(provenance: &Provenance) -> String {
          **The paper:**\n\n> {}\n\n```bibtex\n{}\n```\n",
         c::software_plain(provenance),
         c::software_bibtex(provenance),
-        c::PAPER_PLAIN,
+        c::PAPER_PLAIN.replace(
+            "doi:10.1098/rsta.2012.0434",
+            "[doi:10.1098/rsta.2012.0434](https://doi.org/10.1098/rsta.2012.0434)"
+        ),
         c::PAPER_BIBTEX
     )
 }
@@ -172,10 +225,15 @@ fn copy_dir(from: &Path, to: &Path) -> Result<()> {
 ///
 /// In a chapter, `{{n SCENE/KEY}}` becomes the key number's value (to its significant
 /// figures), `{{pm SCENE/KEY}}` the value ± its uncertainty with its unit, and
-/// `{{u SCENE/KEY}}` the uncertainty alone. An unknown scene or key fails the build.
+/// `{{u SCENE/KEY}}` the uncertainty alone, `{{verdict SCENE}}` the result's verdict
+/// ("**Partly reproduced.**") and `{{evidence SCENE}}` its evidence in one line. An unknown scene or key fails the build.
 pub struct NumbersPreprocessor {
     /// Key numbers by scene.
     pub numbers: HashMap<String, KeyNumbers>,
+    /// Verdicts by scene.
+    pub verdicts: HashMap<String, crate::scene::Verdict>,
+    /// The size of each scene's `data.json` in bytes (for the links under its chapter).
+    pub data_sizes: HashMap<String, u64>,
     /// Scene by chapter file.
     pub chapters: HashMap<String, String>,
     /// Where the numbers come from.
@@ -202,7 +260,7 @@ impl NumbersPreprocessor {
         let mut rest = text;
         while let Some(start) = rest.find("{{") {
             let tail = &rest[start + 2..];
-            let Some((kind, after)) = ["n ", "pm ", "u "]
+            let Some((kind, after)) = ["n ", "pm ", "u ", "verdict ", "evidence "]
                 .iter()
                 .find_map(|k| tail.strip_prefix(k).map(|a| (k.trim(), a)))
             else {
@@ -214,6 +272,20 @@ impl NumbersPreprocessor {
                 .find("}}")
                 .ok_or_else(|| anyhow::anyhow!("unclosed {{{{{kind} …"))?;
             out.push_str(&rest[..start]);
+            if kind == "verdict" || kind == "evidence" {
+                let scene = after[..end].trim();
+                let verdict = self
+                    .verdicts
+                    .get(scene)
+                    .ok_or_else(|| anyhow::anyhow!("unknown scene `{scene}` in a {kind}"))?;
+                out.push_str(&if kind == "verdict" {
+                    format!("**{}.**", capitalised(&verdict.outcome.to_string()))
+                } else {
+                    verdict.evidence.clone()
+                });
+                rest = &after[end + 2..];
+                continue;
+            }
             let value = self.lookup(&after[..end])?;
             out.push_str(&match (kind, value) {
                 ("u", KeyValue::Float(c)) => pretty(c.uncertainty.value, 1),
@@ -233,8 +305,13 @@ impl NumbersPreprocessor {
             self.provenance.line()
         );
         if let Some(scene) = self.chapters.get(chapter) {
+            let size = self
+                .data_sizes
+                .get(scene)
+                .map(|b| format!(" ({})", human_size(*b)))
+                .unwrap_or_default();
             s.push_str(&format!(
-                " Data: [data.json](generated/{scene}/data.json) · [key numbers with their \
+                " Data: [data.json](generated/{scene}/data.json){size} · [key numbers with their \
                  uncertainties](generated/{scene}/key_numbers.json) · `cantilever cite {scene}`."
             ));
         }
@@ -438,6 +515,16 @@ mod tests {
         k.integer("n", 7);
         let p = NumbersPreprocessor {
             numbers: [("s".to_string(), k)].into_iter().collect(),
+            verdicts: [(
+                "s".to_string(),
+                crate::scene::Verdict {
+                    outcome: crate::scene::Outcome::Partly,
+                    evidence: "e".into(),
+                },
+            )]
+            .into_iter()
+            .collect(),
+            data_sizes: HashMap::new(),
             chapters: HashMap::new(),
             provenance: Provenance::now("test"),
         };
@@ -447,6 +534,8 @@ mod tests {
             p.expand("{{n s/n}} {{#include x}}").unwrap(),
             "7 {{#include x}}"
         );
+        assert_eq!(p.expand("{{verdict s}}").unwrap(), "**Partly reproduced.**");
+        assert!(p.expand("{{verdict t}}").is_err());
         assert!(p.expand("{{n s/y}}").is_err());
         assert!(p.expand("{{n t/x}}").is_err());
         assert_eq!(pretty(3.6e-16, 2), "3.6 × 10⁻¹⁶");

@@ -37,7 +37,7 @@ fn year(p: &Provenance) -> &str {
 /// from uncommitted code cannot be reproduced from the commit alone).
 fn commit(p: &Provenance) -> String {
     let short = p.commit.get(..12).unwrap_or(p.commit);
-    if p.dirty == "true" {
+    if p.dirty == Some(true) {
         format!("{short}, with uncommitted changes")
     } else {
         short.to_string()
@@ -79,7 +79,7 @@ mod tests {
         let p = Provenance {
             version: "0.1.0",
             commit: "0123456789abcdef0123",
-            dirty: "true",
+            dirty: Some(true),
             toolchain: "rustc",
             date: "2026-11-21T00:00:00Z".into(),
             resolution: "book".into(),

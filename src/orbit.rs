@@ -139,6 +139,58 @@ pub fn settle(
     Ok(orbit)
 }
 
+/// A settled orbit of the rigid-impact model.
+#[derive(Debug, Clone, Serialize)]
+pub struct RigidOrbit {
+    /// Its label: period m, impacts per period n.
+    pub kind: OrbitKind,
+    /// The best relative residual on the stroboscopic map (as for [`Orbit`]).
+    pub residual: f64,
+    /// The incoming tip velocity of the last impact (the model's units; NaN without one).
+    pub impact_velocity: f64,
+}
+
+/// The rigid-impact model's counterpart of [`settle`]: `transient` periods from x0, then
+/// `window` periods strobed one by one, the orbit labelled by the same criterion.
+pub fn settle_rigid(
+    model: &crate::rigid::RigidImpact,
+    x0: &DVector<f64>,
+    transient: u64,
+    window: u64,
+) -> RigidOrbit {
+    use crate::sim::Clock;
+    let period = model.sim.period();
+    let mut x = model.run(x0, transient as f64 * period).state;
+    let mut strobe = vec![x.clone()];
+    let mut impacts_per_cycle = Vec::new();
+    let mut impact_velocity = f64::NAN;
+    for c in 0..window as i64 {
+        let start = transient as i64 + c;
+        let run = model.run_until(
+            &x,
+            Clock::at_cycle(period, start),
+            Clock::at_cycle(period, start + 1),
+        );
+        let impacts = run.impacts();
+        if let Some(&(_, v, _)) = impacts.last() {
+            impact_velocity = v;
+        }
+        impacts_per_cycle.push(impacts.len() as u64);
+        x = run.state;
+        strobe.push(x.clone());
+    }
+    let (m, residual) = detect_period(&strobe, PERIODIC_TOLERANCE, MAX_PERIOD);
+    let kind = m.map_or(OrbitKind::NotPeriodic, |m| OrbitKind::Periodic {
+        m,
+        n: impacts_per_cycle.iter().rev().take(m as usize).sum(),
+    });
+    RigidOrbit {
+        kind,
+        residual,
+        impact_velocity,
+    }
+}
+
 /// A deterministic pseudo-random stream (SplitMix64, Steele, Lea & Flood 2014): seeded per
 /// sweep point, so a diagram does not depend on the thread count or on a crate's version.
 #[derive(Debug, Clone)]

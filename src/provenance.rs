@@ -12,8 +12,8 @@ pub struct Provenance {
     pub version: &'static str,
     /// The git commit of the build ("unknown" outside a repository).
     pub commit: &'static str,
-    /// Whether tracked files differed from that commit ("true", "false" or "unknown").
-    pub dirty: &'static str,
+    /// Whether tracked files differed from that commit (`None` outside a repository).
+    pub dirty: Option<bool>,
     /// The compiler.
     pub toolchain: &'static str,
     /// When the numbers were computed (UTC, ISO 8601).
@@ -28,7 +28,11 @@ impl Provenance {
         Self {
             version: env!("CARGO_PKG_VERSION"),
             commit: env!("CANTILEVER_GIT_COMMIT"),
-            dirty: env!("CANTILEVER_GIT_DIRTY"),
+            dirty: match env!("CANTILEVER_GIT_DIRTY") {
+                "true" => Some(true),
+                "false" => Some(false),
+                _ => None,
+            },
             toolchain: env!("CANTILEVER_TOOLCHAIN"),
             date: utc_now(),
             resolution: resolution.to_string(),
@@ -37,7 +41,7 @@ impl Provenance {
 
     /// One line for a page footer or a citation.
     pub fn line(&self) -> String {
-        let dirty = if self.dirty == "true" {
+        let dirty = if self.dirty == Some(true) {
             " (with uncommitted changes)"
         } else {
             ""
@@ -47,9 +51,14 @@ impl Provenance {
         } else {
             self.commit
         };
+        let resolution = match self.resolution.as_str() {
+            "book" => "full resolution",
+            "test" => "the tests' reduced resolution",
+            other => other,
+        };
         format!(
-            "impacting-cantilever {} (commit {commit}{dirty}), {}, {} resolution, {}",
-            self.version, self.toolchain, self.resolution, self.date
+            "impacting-cantilever {} (commit {commit}{dirty}), {}, {resolution}, {}",
+            self.version, self.toolchain, self.date
         )
     }
 }

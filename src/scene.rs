@@ -125,6 +125,9 @@ pub trait Scene: Sync {
     const HEADLINE: &'static [(&'static str, &'static str)];
     /// Its chapter in the book (a file under `book/src/`).
     const CHAPTER: &'static str;
+    /// Whether it measures wall times: such a scene runs alone, after the others, so that
+    /// its timings do not share the cores with another scene's work.
+    const TIMED: bool = false;
     /// The parameters.
     type Params: Serialize + Clone + Send + Sync;
     /// The computed data.
@@ -174,6 +177,8 @@ pub trait Entry: Sync {
     fn method(&self) -> &'static str;
     /// [`Scene::HEADLINE`].
     fn headline(&self) -> &'static [(&'static str, &'static str)];
+    /// [`Scene::TIMED`].
+    fn timed(&self) -> bool;
     /// Whether the tests run this scene at a reduced resolution (its parameters differ
     /// between [`Resolution::Test`] and [`Resolution::Book`]).
     fn reduced_for_tests(&self) -> bool;
@@ -202,6 +207,9 @@ impl<S: Scene> Entry for S {
     }
     fn headline(&self) -> &'static [(&'static str, &'static str)] {
         S::HEADLINE
+    }
+    fn timed(&self) -> bool {
+        S::TIMED
     }
     fn reduced_for_tests(&self) -> bool {
         let json = |r| serde_json::to_value(S::params(r)).ok();

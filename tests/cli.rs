@@ -270,7 +270,7 @@ fn cite_prints_the_number_its_uncertainty_provenance_and_both_citations() {
         "parameters   {",
         "method       ",
         "computed by  impacting-cantilever ",
-        "book resolution",
+        "full resolution",
         "@software{impacting_cantilever",
         "doi     = {10.1098/rsta.2012.0434}",
     ] {

@@ -2,10 +2,10 @@
 //! convergence for every N.
 
 use crate::render::{
+    cell,
     dashed_key, draw_legend, drawing, markdown_table, palette, solid_key, styled_mesh,
     RenderError, CAPTION_FONT, WIDTH,
 };
-use crate::report::format_sig;
 use super::Fig3abcData;
 use plotters::prelude::*;
 
@@ -16,6 +16,7 @@ fn panel<DB: DrawingBackend>(
     simulated: &[f64],
     predicted: &[f64],
     labels: (&str, &str),
+    legend: SeriesLabelPosition,
 ) -> Result<(), RenderError> {
     let (lo, hi) = simulated
         .iter()
@@ -57,7 +58,7 @@ fn panel<DB: DrawingBackend>(
         .map_err(drawing)?
         .label(labels.1)
         .legend(dashed_key(BLACK.stroke_width(1)));
-    draw_legend(&mut chart, SeriesLabelPosition::LowerLeft)?;
+    draw_legend(&mut chart, legend)?;
     Ok(())
 }
 
@@ -77,6 +78,7 @@ pub fn plot(d: &Fig3abcData) -> Result<String, RenderError> {
                 &one.simulated,
                 &one.asymptotic,
                 ("simulated", "rₑ², eq (19)"),
+                SeriesLabelPosition::LowerLeft,
             )?;
         }
         if let Some(two) = d.series.iter().find(|s| s.modes == 2) {
@@ -88,6 +90,7 @@ pub fn plot(d: &Fig3abcData) -> Result<String, RenderError> {
                 &col(0, &two.simulated),
                 &col(0, &two.predicted),
                 ("simulated", "[R]₁₁ = (1 − rₑ)/2"),
+                SeriesLabelPosition::UpperLeft,
             )?;
             panel(
                 &cells[2],
@@ -96,6 +99,7 @@ pub fn plot(d: &Fig3abcData) -> Result<String, RenderError> {
                 &col(1, &two.simulated),
                 &col(1, &two.predicted),
                 ("simulated", "[R]₂₁ = (3rₑ − 1)/2"),
+                SeriesLabelPosition::MiddleLeft,
             )?;
         }
         let gmin = d
@@ -139,7 +143,7 @@ pub fn plot(d: &Fig3abcData) -> Result<String, RenderError> {
                 .label(format!("N = {} (order {:.2})", s.modes, s.observed_order))
                 .legend(solid_key(c.stroke_width(2)));
         }
-        draw_legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
+        draw_legend(&mut chart, SeriesLabelPosition::LowerRight)?;
         root.present().map_err(drawing)?;
     }
     Ok(svg)
@@ -173,11 +177,12 @@ pub fn table(d: &Fig3abcData) -> String {
 /// The return ratios at the decades of ε and around $\varepsilon = k_2^{-1/2}$, where the
 /// gap jumps (every ε is in `data.json`).
 pub fn ratios_table(d: &Fig3abcData) -> String {
-    let shown = |i: usize, e: f64| i.is_multiple_of(4) || (0.03..0.07).contains(&e);
+    // powers of ten, and the refined points around k = k₂
+    let shown = |e: f64| (e.log10() - e.log10().round()).abs() < 1e-9 || (0.03..0.07).contains(&e);
     let mut rows = Vec::new();
     for s in &d.series {
         for (i, e) in d.params.eps.iter().enumerate() {
-            if !shown(i, *e) {
+            if !shown(*e) {
                 continue;
             }
             let show = |v: &[f64]| {
@@ -189,10 +194,10 @@ pub fn ratios_table(d: &Fig3abcData) -> String {
             };
             rows.push(vec![
                 s.modes.to_string(),
-                format_sig(*e, 3),
+                cell(*e, 3),
                 show(&s.simulated[i]),
                 show(&s.predicted[i]),
-                format_sig(s.gap[i], 2),
+                cell(s.gap[i], 2),
             ]);
         }
     }

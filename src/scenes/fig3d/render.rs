@@ -34,7 +34,8 @@ pub fn plot(d: &Fig3dData) -> Result<String, RenderError> {
                 .margin_right(28)
                 .x_label_area_size(44)
                 .y_label_area_size(56)
-                .build_cartesian_2d(0.0..1.0, (lo - 0.2)..(hi + 0.2))
+                // headroom above the profiles for the legend
+                .build_cartesian_2d(0.0..1.0, (lo - 0.2)..(hi + 1.4))
                 .map_err(drawing)?;
             styled_mesh(&mut chart)
                 .x_desc("s (along the beam)")
@@ -63,7 +64,7 @@ pub fn plot(d: &Fig3dData) -> Result<String, RenderError> {
                     .label(format!("N = {}", p.modes))
                     .legend(solid_key(c.stroke_width(2)));
             }
-            draw_legend(&mut chart, SeriesLabelPosition::LowerLeft)?;
+            draw_legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
         }
         root.present().map_err(drawing)?;
     }
@@ -76,7 +77,7 @@ pub fn table(d: &Fig3dData) -> String {
         "law".to_string(),
         "N".to_string(),
         "$L^2$ distance from $\\phi_1$".to_string(),
-        "largest distance from $\\phi_1$".to_string(),
+        "sup distance".to_string(),
         "$L^2$ norm".to_string(),
     ];
     header.extend(d.params.probes.iter().map(|s| format!("$w_t({s})$")));

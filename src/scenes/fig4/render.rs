@@ -25,7 +25,14 @@ fn pieces(points: &[(f64, f64, bool)]) -> Vec<(Vec<(f64, f64)>, bool)> {
 
 /// The SVG plot.
 pub fn plot(d: &Fig4Data) -> Result<String, RenderError> {
-    let rows = d.panels.len().max(1);
+    // the contacts of the long-contact orbits, magnified, in a last row
+    let zoomed: Vec<&super::Fig4Panel> = d
+        .panels
+        .iter()
+        .filter(|p| p.dwell_depth.is_some() && !p.contacts.is_empty())
+        .take(2)
+        .collect();
+    let rows = d.panels.len().max(1) + usize::from(!zoomed.is_empty());
     let mut svg = String::new();
     {
         let root =
@@ -96,9 +103,56 @@ pub fn plot(d: &Fig4Data) -> Result<String, RenderError> {
                     .map_err(drawing)?;
             }
         }
+        for (z, p) in zoomed.iter().enumerate() {
+            contact_magnified(&cells[2 * d.panels.len() + z], p)?;
+        }
         root.present().map_err(drawing)?;
     }
     Ok(svg)
+}
+
+/// One contact of an orbit, magnified: the tip displacement from just before the entry to
+/// just after the exit, with the stop's level, so that a shallow dwell shows.
+fn contact_magnified<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    p: &super::Fig4Panel,
+) -> Result<(), RenderError> {
+    let (start, end) = p.contacts[0];
+    let margin = 0.15 * (end - start);
+    let (t0, t1) = (start - margin, end + margin);
+    let inside: Vec<(f64, f64, bool)> = p
+        .series
+        .iter()
+        .filter(|s| s.0 >= t0 && s.0 <= t1)
+        .map(|s| (s.0, s.1, s.3))
+        .collect();
+    let top = inside.iter().fold(0.0_f64, |a, s| a.max(s.1));
+    let (lo, hi) = (-0.6 * top, 1.15 * top);
+    let mut chart = ChartBuilder::on(area)
+        .caption(format!("N = {}: the contact, magnified", p.modes), CAPTION_FONT)
+        .margin(6)
+        .margin_right(28)
+        .x_label_area_size(44)
+        .y_label_area_size(64)
+        .build_cartesian_2d(t0..t1, lo..hi)
+        .map_err(drawing)?;
+    styled_mesh(&mut chart)
+        .x_desc("t / T")
+        .y_desc("tip d / free amplitude")
+        // ticks at ±round-off of 0 would read "-0.0"
+        .y_label_formatter(&|y| format!("{:.2}", if y.abs() < 1e-9 { 0.0 } else { *y }))
+        .draw()
+        .map_err(drawing)?;
+    chart
+        .draw_series(LineSeries::new(vec![(t0, 0.0), (t1, 0.0)], BLACK.mix(0.4)))
+        .map_err(drawing)?;
+    for (line, c) in pieces(&inside) {
+        let color = if c { CONTACT } else { FREE };
+        chart
+            .draw_series(LineSeries::new(line, color.stroke_width(2)))
+            .map_err(drawing)?;
+    }
+    Ok(())
 }
 
 fn kinds(v: &[(OrbitKind, usize)]) -> String {
@@ -138,7 +192,7 @@ pub fn table(d: &Fig4Data) -> String {
             "N",
             "orbit",
             "impact velocities / $(\\omega A_{\\rm free})$",
-            "contact intervals ($t/T$)",
+            "contact intervals, $t/T$",
             "max tip / $A_{\\rm free}$",
             "dwell depth / $A_{\\rm free}$",
         ],

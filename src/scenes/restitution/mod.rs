@@ -63,10 +63,14 @@ pub struct Nordmark {
     pub omega_over_w1: f64,
     /// The rigid model's orbit and its impact velocity / (ωA_free).
     pub rigid_kind: OrbitKind,
+    /// The rigid orbit's stroboscopic residual.
+    pub rigid_residual: f64,
     /// Rigid impact velocity / (ωA_free).
     pub rigid_velocity: f64,
     /// Per k: the compliant orbit and impact velocity / (ωA_free).
     pub compliant: Vec<(OrbitKind, f64)>,
+    /// Per k: the compliant orbit's stroboscopic residual.
+    pub compliant_residual: Vec<f64>,
     /// Per k: |compliant − rigid| / (ωA_free).
     pub gap: Vec<f64>,
     /// The slope of log gap against log k, with its standard error.
@@ -110,26 +114,11 @@ fn nordmark(p: &RestitutionParams, omega: f64) -> Result<Nordmark, Error> {
     let model = case(1.0).model()?;
     let free_amplitude = model.free_tip_amplitude();
     let vamp = free_amplitude.1;
-    let sim = Simulator::new(model)?;
-    let period = sim.period();
-    let rigid = RigidImpact::new(sim, impulse_response(1, 1.0)?)?;
-    let run = rigid.run(&DVector::zeros(2), (p.transient + p.window) as f64 * period);
-    let rigid_velocity = run.impacts().last().map_or(f64::NAN, |i| i.1) / vamp;
-    // the rigid orbit's period from the impacts of its last window: equal speeds
-    let last: Vec<f64> = run
-        .impacts()
-        .iter()
-        .filter(|i| i.0 >= p.transient as f64 * period)
-        .map(|i| i.1)
-        .collect();
-    let rigid_kind = if last.len() as u64 == p.window
-        && last.iter().all(|v| (v - last[0]).abs() <= 1e-9 * v.abs())
-    {
-        OrbitKind::Periodic { m: 1, n: 1 }
-    } else {
-        OrbitKind::NotPeriodic
-    };
+    let rigid = RigidImpact::new(Simulator::new(model)?, impulse_response(1, 1.0)?)?;
+    let settled = orbit::settle_rigid(&rigid, &DVector::zeros(2), p.transient, p.window);
+    let rigid_velocity = settled.impact_velocity / vamp;
     let mut compliant = Vec::new();
+    let mut compliant_residual = Vec::new();
     for &k in &p.nordmark_k {
         let sim = Simulator::new(case(k).model()?)?;
         let o = orbit::settle(&sim, &DVector::zeros(2), p.transient, p.window, 0)?;
@@ -141,13 +130,16 @@ fn nordmark(p: &RestitutionParams, omega: f64) -> Result<Nordmark, Error> {
             .map_or(f64::NAN, |e| e.tip_velocity)
             / vamp;
         compliant.push((o.kind, v));
+        compliant_residual.push(o.residual);
     }
     let gap: Vec<f64> = compliant.iter().map(|(_, v)| (v - rigid_velocity).abs()).collect();
     let lx: Vec<f64> = p.nordmark_k.iter().map(|k| k.ln()).collect();
     let ly: Vec<f64> = gap.iter().map(|g| g.ln()).collect();
     Ok(Nordmark {
         omega_over_w1: omega,
-        rigid_kind,
+        compliant_residual,
+        rigid_kind: settled.kind,
+        rigid_residual: settled.residual,
         rigid_velocity,
         compliant,
         gap,
@@ -248,14 +240,23 @@ impl Scene for RestitutionLaws {
             let key = format!("omega={}", n.omega_over_w1);
             k.free_amplitude(&format!("{key} "), n.free_amplitude);
             k.text(format!("{key} rigid orbit"), n.rigid_kind.to_string());
-            let settled = |v: f64| Uncertainty::new(1e-9 * v.abs(), "velocity on an orbit settled to 1e-9");
-            k.cited(format!("{key} rigid impact velocity"), n.rigid_velocity, 6, settled(n.rigid_velocity), "ωA_free");
-            for (kk, (kind, v)) in d.params.nordmark_k.iter().zip(&n.compliant) {
+            // a velocity on an orbit is as good as the orbit is settled (its stroboscopic
+            // residual), and no better than round-off
+            let on_orbit = |v: f64, residual: f64| {
+                Uncertainty::new(
+                    v.abs() * residual.max(1e-12),
+                    "distance to the periodic orbit (stroboscopic residual) and round-off",
+                )
+            };
+            let rigid_u = on_orbit(n.rigid_velocity, n.rigid_residual);
+            k.cited(format!("{key} rigid impact velocity"), n.rigid_velocity, 6, rigid_u.clone(), "ωA_free");
+            for ((kk, (kind, v)), r) in d.params.nordmark_k.iter().zip(&n.compliant).zip(&n.compliant_residual) {
                 k.text(format!("{key} k={kk:e} orbit"), kind.to_string());
-                k.cited(format!("{key} k={kk:e} impact velocity"), *v, 6, settled(*v), "ωA_free");
+                k.cited(format!("{key} k={kk:e} impact velocity"), *v, 6, on_orbit(*v, *r), "ωA_free");
             }
-            for (kk, g) in d.params.nordmark_k.iter().zip(&n.gap) {
-                k.cited(format!("{key} k={kk:e} gap to rigid"), *g, 2, settled(*g), "ωA_free");
+            for ((kk, g), ((_, v), r)) in d.params.nordmark_k.iter().zip(&n.gap).zip(n.compliant.iter().zip(&n.compliant_residual)) {
+                let u = Uncertainty::new(on_orbit(*v, *r).value + rigid_u.value, "the two velocities' uncertainties, added");
+                k.cited(format!("{key} k={kk:e} gap to rigid"), *g, 2, u, "ωA_free");
             }
             k.cited(
                 format!("{key} convergence rate"),

@@ -44,7 +44,7 @@ pub fn plot(d: &RestitutionData) -> Result<String, RenderError> {
                 .draw_series(ks.iter().zip(&n.gap).map(|(&k, &g)| Circle::new((k, g), 4, c.filled())))
                 .map_err(drawing)?;
         }
-        draw_legend(&mut chart, SeriesLabelPosition::LowerLeft)?;
+        draw_legend(&mut chart, SeriesLabelPosition::UpperRight)?;
         let eps = &d.params.eps;
         let (elo, ehi) = d
             .re_error
@@ -91,7 +91,7 @@ pub fn table(d: &RestitutionData) -> String {
                 kind.to_string(),
                 cell(*v, 6),
                 cell(n.rigid_velocity, 6),
-                crate::report::format_sig(*g, 2),
+                cell(*g, 2),
             ]);
         }
     }

@@ -3,7 +3,7 @@
 
 use crate::render::{
     cell, dashed_key, draw_legend, drawing, markdown_table, palette, solid_key, styled_mesh,
-    RenderError, CAPTION_FONT, WIDTH,
+    RenderError, CAPTION_FONT, LABEL_FONT, WIDTH,
 };
 use crate::report::format_sig;
 use super::SpectrumData;
@@ -39,9 +39,17 @@ pub fn plot(d: &SpectrumData) -> Result<String, RenderError> {
                     d.k_over_k1.iter().cloned().zip(f.iter().cloned()),
                     c.stroke_width(2),
                 ))
-                .map_err(drawing)?
-                .label(format!("i = {}", i + 1))
-                .legend(solid_key(c.stroke_width(2)));
+                .map_err(drawing)?;
+            // each curve named at its right end, just above its clamped-pinned value
+            if let Some(&last) = f.last() {
+                chart
+                    .draw_series(std::iter::once(Text::new(
+                        format!("i = {}", i + 1),
+                        (hi / 300.0, last * 1.12),
+                        LABEL_FONT.into_font().color(&c),
+                    )))
+                    .map_err(drawing)?;
+            }
             let small: Vec<(f64, f64)> = d
                 .k_over_k1
                 .iter()
@@ -53,7 +61,7 @@ pub fn plot(d: &SpectrumData) -> Result<String, RenderError> {
                 .draw_series(DashedLineSeries::new(small, 5, 4, c.stroke_width(1)))
                 .map_err(drawing)?;
             if i == 0 {
-                law.label("small-k law, eq (4)")
+                law.label("small-k law, eq (4), same colour")
                     .legend(dashed_key(BLACK.stroke_width(1)));
             }
             let pinned = chart
@@ -77,7 +85,7 @@ pub fn plot(d: &SpectrumData) -> Result<String, RenderError> {
                     });
             }
         }
-        draw_legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
+        draw_legend(&mut chart, SeriesLabelPosition::LowerRight)?;
 
         let s = &d.small_k;
         let k1 = d.k1;
@@ -123,6 +131,15 @@ pub fn plot(d: &SpectrumData) -> Result<String, RenderError> {
     Ok(svg)
 }
 
+/// A relative difference: "0" when the two agree to the last bit.
+fn rel_diff(x: f64) -> String {
+    if x == 0.0 {
+        "0".into()
+    } else {
+        format_sig(x, 2)
+    }
+}
+
 /// The markdown tables: golden comparisons, k₂/k₁ and the small-k law.
 pub fn table(d: &SpectrumData) -> String {
     let mut rows = Vec::new();
@@ -134,9 +151,9 @@ pub fn table(d: &SpectrumData) -> String {
             rows.push(vec![
                 kind.to_string(),
                 c.i.to_string(),
-                format!("{:.15}", c.ours),
-                format!("{:.15}", c.golden),
-                format_sig(c.rel_diff, 2),
+                cell(c.ours, 16),
+                cell(c.golden, 16),
+                rel_diff(c.rel_diff),
             ]);
         }
     }
@@ -144,9 +161,9 @@ pub fn table(d: &SpectrumData) -> String {
         rows.push(vec![
             format!("k = {} k₁", cell(*r, 3)),
             c.i.to_string(),
-            format!("{:.15}", c.ours),
-            format!("{:.15}", c.golden),
-            format_sig(c.rel_diff, 2),
+            cell(c.ours, 16),
+            cell(c.golden, 16),
+            rel_diff(c.rel_diff),
         ]);
     }
     let mut s = markdown_table(

@@ -109,6 +109,18 @@ pub struct WorkPrecisionData {
     pub machine: String,
 }
 
+/// The largest event-time difference of the DP5 run at its tightest rtol from the
+/// reference, as quoted: a bound when it is at round-off (the digits there differ between
+/// machines).
+fn dp5_agreement(d: &WorkPrecisionData) -> Option<String> {
+    let best = d.points.iter().rfind(|p| p.method != "exact")?;
+    Some(if best.event_error < 1e-11 {
+        "below 1e-11".to_string()
+    } else {
+        format!("{:.0e}", best.event_error)
+    })
+}
+
 /// The CPU model and the number of cores, for the record of wall times.
 pub fn machine() -> String {
     let model = std::fs::read_to_string("/proc/cpuinfo")
@@ -271,6 +283,7 @@ impl Scene for WorkPrecision {
         "error against run time: exact simulator vs DP5 reference, Fig 4 model, N = 10";
     const CLAIM: &'static str = "— (the paper gives no error estimates)";
     const CHAPTER: &'static str = "work-precision.md";
+    const TIMED: bool = true;
     const METHOD: &'static str = "the Figure 4 model (N = 10) simulated 200 periods from rest by the exact simulator at several root tolerances and by the independent Dormand–Prince 5(4) integrator at several rtol; errors against the exact simulator at 1e-15; wall times best of 3 on the machine that built the book";
     const HEADLINE: &'static [(&'static str, &'static str)] = &[("contact switches in 200 periods", "reference_events"), ("evaluations per period, Figure 4", "Figure 4 evaluations per period")];
     type Params = WorkPrecisionParams;
@@ -302,14 +315,10 @@ impl Scene for WorkPrecision {
                 k.integer(format!("{key} right-hand sides"), p.evaluations as i64);
             }
         }
-        if let Some(best) = d.points.iter().rfind(|p| p.method != "exact") {
+        if let Some(agreement) = dp5_agreement(d) {
             k.text(
                 "DP5 at its tightest tolerance, largest event-time difference",
-                if best.event_error < 1e-11 {
-                    "below 1e-11".to_string()
-                } else {
-                    format!("{:.0e}", best.event_error)
-                },
+                agreement,
             );
         }
         k.cited(
@@ -352,19 +361,13 @@ impl Scene for WorkPrecision {
 
     fn verdict(d: &WorkPrecisionData) -> Verdict {
         let all_same = d.points.iter().all(|p| p.same_sequence);
-        let best_dp5 = d
-            .points
-            .iter()
-            .filter(|p| p.method != "exact")
-            .map(|p| p.event_error)
-            .fold(f64::INFINITY, f64::min);
         Verdict {
             outcome: Outcome::NoClaim,
             evidence: format!(
-                "every run finds the same {} switches: {}; the independent DP5 integrator agrees with the exact simulator to {:.0e} in event time",
+                "every run finds the same {} switches: {}; at its tightest rtol the independent DP5 integrator agrees with the exact simulator in event time to {}",
                 d.reference_events,
                 if all_same { "yes" } else { "no" },
-                best_dp5
+                dp5_agreement(d).unwrap_or_else(|| "(no DP5 run)".into())
             ),
         }
     }
