@@ -51,6 +51,7 @@ pub mod asymptotics;
 pub mod citation;
 pub mod continuum;
 pub mod dopri5;
+pub mod energetic;
 pub mod error;
 pub mod flow;
 pub mod galerkin;

@@ -148,6 +148,12 @@ pub struct RigidOrbit {
     pub residual: f64,
     /// The incoming tip velocity of the last impact (the model's units; NaN without one).
     pub impact_velocity: f64,
+    /// Chatters (impacts accumulating in finite time) in the recorded window.
+    pub chatters: usize,
+    /// The state at the end of the window.
+    pub state: Vec<f64>,
+    /// The cycle at which the window ends.
+    pub cycle: i64,
 }
 
 /// The rigid-impact model's counterpart of [`settle`]: `transient` periods from x0, then
@@ -164,6 +170,7 @@ pub fn settle_rigid(
     let mut strobe = vec![x.clone()];
     let mut impacts_per_cycle = Vec::new();
     let mut impact_velocity = f64::NAN;
+    let mut chatters = 0;
     for c in 0..window as i64 {
         let start = transient as i64 + c;
         let run = model.run_until(
@@ -172,6 +179,11 @@ pub fn settle_rigid(
             Clock::at_cycle(period, start + 1),
         );
         let impacts = run.impacts();
+        chatters += run
+            .events
+            .iter()
+            .filter(|e| matches!(e, crate::rigid::RigidEvent::Chatter { .. }))
+            .count();
         if let Some(&(_, v, _)) = impacts.last() {
             impact_velocity = v;
         }
@@ -188,6 +200,9 @@ pub fn settle_rigid(
         kind,
         residual,
         impact_velocity,
+        chatters,
+        cycle: (transient + window) as i64,
+        state: x.as_slice().to_vec(),
     }
 }
 

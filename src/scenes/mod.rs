@@ -24,5 +24,6 @@ registry! {
     fig3d::Fig3d,
     fig4::Fig4,
     fig5::Fig5,
+    fig6::Fig6,
     work_precision::WorkPrecision,
 }

@@ -93,6 +93,24 @@ struct BlockTables {
 impl EnergyTables {
     /// The tables of `flow`, a region flow of `model`.
     pub fn new(flow: &RegionFlow, model: &GalerkinModel) -> Self {
+        Self::weighted(flow, model.damping(), model.forcing_amplitude())
+    }
+
+    /// The tables of mode j alone (0-based): its own dissipation c_jη̇_j² and forcing work
+    /// f_jη̇_j cos ωt, for the energy balance of that mode (the damping is diagonal in the
+    /// modal coordinates).
+    pub fn for_mode(flow: &RegionFlow, model: &GalerkinModel, j: usize) -> Self {
+        let only =
+            |v: &DVector<f64>| DVector::from_fn(v.len(), |i, _| if i == j { v[i] } else { 0.0 });
+        Self::weighted(
+            flow,
+            &only(model.damping()),
+            &only(model.forcing_amplitude()),
+        )
+    }
+
+    /// The tables for dissipation ∫η̇ᵀdiag(c)η̇ and forcing work ∫fᵀη̇ cos ωt.
+    fn weighted(flow: &RegionFlow, c: &DVector<f64>, f: &DVector<f64>) -> Self {
         let n = flow.modes();
         let basis = flow.eigenvectors();
         let velocity =
@@ -121,13 +139,11 @@ impl EnergyTables {
             p.push(x);
             exponents.push(Complex64::new(0.0, flow.omega()));
         }
-        let c = model.damping();
         // G = Pᵀ diag(C) P as one blocked product (O(N³), seconds at N = 400 as loops)
         let pm = faer::Mat::<Complex64>::from_fn(n, p.len(), |i, m| p[m][i]);
         let cp = faer::Mat::<Complex64>::from_fn(n, p.len(), |i, m| p[m][i] * c[i]);
         let g = pm.transpose() * &cp;
         let gram = DMatrix::from_fn(p.len(), p.len(), |a, b| g[(a, b)]);
-        let f = model.forcing_amplitude();
         let forcing = p
             .iter()
             .map(|pm| (0..n).map(|i| pm[i] * f[i]).sum())
