@@ -366,3 +366,57 @@ fn figure_6_energetic_restitution_and_the_one_mode_model() {
         .filter_map(|s| s.rest.value())
         .all(|r| (r - 0.036).abs() > 0.05));
 }
+
+#[test]
+fn the_energetic_restitution_map_is_converged_where_it_is_coloured_and_thread_independent() {
+    use impacting_cantilever::scenes::energetic_map::{compute, matched_modes, Cell, MapParams};
+    // stiffness matching: 4β_N³ ≥ 30k, with β_N ≈ (N − ½)π for large N
+    assert_eq!(matched_modes(10.0).unwrap(), 10);
+    let n = matched_modes(1e4).unwrap();
+    let beta = |n: usize| (n as f64 - 0.5) * std::f64::consts::PI;
+    let k = 1e4 * impacting_cantilever::galerkin::first_modal_stiffness();
+    assert!(4.0 * beta(n).powi(3) >= 30.0 * k * 0.999 && 4.0 * beta(n - 1).powi(3) < 30.0 * k);
+    let p = MapParams::test();
+    let run = |threads| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| compute(&p, &impacting_cantilever::scene::Silent).unwrap())
+    };
+    let (one, two) = (run(1), run(2));
+    for (a, b) in one.points.iter().zip(&two.points) {
+        assert_eq!(a.cell, b.cell, "bitwise the same whatever the thread count");
+    }
+    // every coloured point agrees with N + 10 modes to the stated tolerance
+    for q in &one.points {
+        if let Cell::Value(r) = q.cell {
+            let fine = q.refined.1.unwrap().value().unwrap();
+            assert!((r - fine).abs() <= p.convergence_tolerance);
+            assert_eq!(q.refined.0, q.kind);
+        }
+    }
+    // at (ω, k) = (2, 1000k₁) the map and Figure 6(b) compute the same model (N = 15
+    // here, 20 there): their r_E agree within the map's convergence tolerance
+    let b = one
+        .points
+        .iter()
+        .find(|q| q.omega_over_w1 == 2.0 && q.k_over_k1 == 1000.0)
+        .unwrap();
+    let Cell::Value(r) = b.cell else {
+        panic!("{:?}", b.cell)
+    };
+    let f6 = impacting_cantilever::energetic::orbit_coefficient(
+        &impacting_cantilever::sim::Simulator::new(
+            impacting_cantilever::problems::figure6b(20)
+                .model()
+                .unwrap(),
+        )
+        .unwrap(),
+        &nalgebra::DVector::zeros(40),
+        1000,
+        40,
+    )
+    .unwrap();
+    assert!((r - f6.coefficient.unwrap().value().unwrap()).abs() < p.convergence_tolerance);
+}

@@ -25,5 +25,6 @@ registry! {
     fig4::Fig4,
     fig5::Fig5,
     fig6::Fig6,
+    energetic_map::EnergeticMap,
     work_precision::WorkPrecision,
 }
