@@ -94,6 +94,26 @@ impl Forcing {
     }
 }
 
+/// A generic impact oscillator ẍ + cẋ + kx = F cos ωt, stop at gx = d₀
+/// ([`GalerkinModel::oscillator`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Oscillator {
+    /// k.
+    pub stiffness: f64,
+    /// c.
+    pub damping: f64,
+    /// F.
+    pub forcing: f64,
+    /// ω.
+    pub omega: f64,
+    /// g: the tip displacement per unit x.
+    pub tip_gain: f64,
+    /// d₀.
+    pub gap: f64,
+    /// The stop stiffness k_s of the compliant contact (0 for the rigid model alone).
+    pub stop_stiffness: f64,
+}
+
 /// Parameters of the Galerkin model, validated by [`GalerkinModel::new`].
 #[derive(Debug, Clone)]
 pub struct GalerkinParams {
@@ -205,9 +225,38 @@ impl GalerkinModel {
         })
     }
 
+    /// The generic one-degree-of-freedom impact oscillator in this model's form:
+    /// ẍ + cẋ + kx = F cos ωt with the stop at gx = d₀ — any stiffness, damping, forcing
+    /// and tip gain g, not only the cantilever's mode 1. The compliant contact adds
+    /// (k_s/4)g²(x − d₀/g) beyond the stop; the rigid-impact model ([`crate::rigid`]) uses
+    /// only its position. It has no beam profile, so [`Self::modal_state`] refuses it.
+    pub fn oscillator(o: &Oscillator) -> Result<Self, ParameterError> {
+        error::finite_positive("oscillator stiffness k", o.stiffness)?;
+        error::finite_non_negative("oscillator damping c", o.damping)?;
+        error::finite("oscillator forcing amplitude F", o.forcing)?;
+        error::finite_positive("oscillator forcing frequency ω", o.omega)?;
+        error::finite_positive("oscillator tip gain g", o.tip_gain)?;
+        error::finite("oscillator gap d₀", o.gap)?;
+        error::finite_non_negative("oscillator stop stiffness", o.stop_stiffness)?;
+        let params = GalerkinParams::new(1, o.stop_stiffness)
+            .with_gap(o.gap)
+            .with_forcing(Forcing {
+                omega: o.omega,
+                profile: SpatialProfile::Modal(vec![o.forcing]),
+            });
+        Ok(Self {
+            params,
+            beta: Vec::new(),
+            modal_stiffness: DVector::from_element(1, o.stiffness),
+            tip: DVector::from_element(1, o.tip_gain),
+            damping: DVector::from_element(1, o.damping),
+            forcing_amplitude: DVector::from_element(1, o.forcing),
+        })
+    }
+
     /// N.
     pub fn modes(&self) -> usize {
-        self.beta.len()
+        self.modal_stiffness.len()
     }
 
     /// The validated parameters.
@@ -216,6 +265,7 @@ impl GalerkinModel {
     }
 
     /// β_j^-, j = 1..N.
+    /// (empty for a [`Self::oscillator`]).
     pub fn beta(&self) -> &[f64] {
         &self.beta
     }
@@ -269,6 +319,13 @@ impl GalerkinModel {
         displacement: &dyn Fn(f64) -> f64,
         velocity: &dyn Fn(f64) -> f64,
     ) -> Result<DVector<f64>, ParameterError> {
+        if self.beta.is_empty() {
+            return Err(ParameterError::new(
+                "initial profile",
+                "a beam profile",
+                "modal states only: a one-degree-of-freedom oscillator has no beam",
+            ));
+        }
         let n = self.modes();
         let eta = project_function(displacement, n)?;
         let vel = project_function(velocity, n)?;

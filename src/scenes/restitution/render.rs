@@ -44,7 +44,7 @@ pub fn plot(d: &RestitutionData) -> Result<String, RenderError> {
                 .draw_series(ks.iter().zip(&n.gap).map(|(&k, &g)| Circle::new((k, g), 4, c.filled())))
                 .map_err(drawing)?;
         }
-        draw_legend(&mut chart, SeriesLabelPosition::UpperRight)?;
+        draw_legend(&mut chart, SeriesLabelPosition::MiddleRight)?;
         let eps = &d.params.eps;
         let (elo, ehi) = d
             .re_error

@@ -340,7 +340,7 @@ fn rigid(args: &Args, setup: Setup, bars: &Bars) -> Result<Report, Error> {
     let outcome_text = match outcome {
         Outcome::Completed => "completed".to_string(),
         Outcome::Chatter(t) => format!(
-            "stopped at t = {t}: impacts accumulate (chatter) and N > 1 sticking is not implemented"
+            "stopped at t = {t}: impacts accumulate (chatter), and this law changes the velocity orthogonal to the tip at every impact, so the chatter has no sticking limit (use --law impulse-response)"
         ),
         Outcome::ImpactLimit => "stopped: more impacts than the policy's limit".to_string(),
     };

@@ -8,17 +8,25 @@
 //!   scale of the run), or a run of three impacts whose intervals shrink geometrically
 //!   (ratio ρ < 1, consistent within 10%) with the last interval below 1e-6 T, is a chatter;
 //! - its accumulation time is extrapolated geometrically, t_∞ = t_n + Δ_n ρ/(1 − ρ);
-//! - N = 1: the model jumps to t_∞ and **sticks** (tip held at d₀, η̇ = 0) while the
-//!   free-flight acceleration pushes into the stop; it is released, in closed form, when the
-//!   forcing pulls the tip away;
-//! - N > 1: sticking would need the constrained (N − 1)-mode dynamics, which this module does
-//!   not implement: the run **stops** at t_∞ with [`Outcome::Chatter`].
-//! - A hard cap of `max_impacts` impacts per run ends it with [`Outcome::ImpactLimit`].
+//! - the model moves to t_∞, puts the tip on the stop with zero tip velocity, and
+//!   **sticks** there while the contact force pushes (the exact constrained flow of the
+//!   other N − 1 directions, [`sticking`]); it is released at the certified time the force
+//!   would turn to pulling, and flies on;
+//! - that limit of infinitely many impacts exists only for a law that leaves the velocity
+//!   orthogonal to φ(1) unchanged (Newton's law at the tip, [R]_IR; any law for N = 1).
+//!   Under another law ([R]_N, [R]_C with N > 1) the run **stops** at t_∞ with
+//!   [`Outcome::Chatter`];
+//! - a hard cap of `max_impacts` impacts per run ends it with [`Outcome::ImpactLimit`].
+
+pub mod sticking;
 
 use crate::error::ParameterError;
+use crate::galerkin::Region;
 use crate::sim::{Clock, Simulator, Stats};
 use nalgebra::{DMatrix, DVector};
 use serde::Serialize;
+use std::sync::OnceLock;
+pub use sticking::Sticking;
 
 /// One rigid-impact event.
 #[derive(Debug, Clone, Serialize)]
@@ -44,12 +52,12 @@ pub enum RigidEvent {
         /// The extrapolated accumulation time.
         accumulation: f64,
     },
-    /// N = 1: the tip is held at the stop from `time`.
+    /// The tip is held at the stop from `time` (after a chatter).
     StickStart {
         /// t.
         time: f64,
     },
-    /// N = 1: the forcing releases the tip at `time`.
+    /// The contact force reaches zero at `time` and the tip flies off.
     StickEnd {
         /// t.
         time: f64,
@@ -61,7 +69,8 @@ pub enum RigidEvent {
 pub enum Outcome {
     /// Reached the requested end.
     Completed,
-    /// N > 1 chattering: stopped at the accumulation time.
+    /// Chattering under a law whose limit does not leave the tangential velocity alone
+    /// (N > 1 with [R]_N or [R]_C): stopped at the accumulation time.
     Chatter(f64),
     /// More than `max_impacts` impacts.
     ImpactLimit,
@@ -129,6 +138,8 @@ pub struct RigidImpact {
     pub law: DMatrix<f64>,
     /// The chattering policy.
     pub settings: RigidSettings,
+    /// The constrained flow of a sticking phase, built on first use.
+    sticking: OnceLock<Sticking>,
 }
 
 impl RigidImpact {
@@ -153,7 +164,42 @@ impl RigidImpact {
             sim,
             law,
             settings: RigidSettings::default(),
+            sticking: OnceLock::new(),
         })
+    }
+
+    /// The generic impact oscillator ẍ + cẋ + kx = F cos ωt, stop at gx = d₀, with
+    /// Newton's law of restitution r ([`crate::galerkin::GalerkinModel::oscillator`]).
+    pub fn oscillator(
+        o: &crate::galerkin::Oscillator,
+        r: f64,
+    ) -> Result<Self, crate::error::Error> {
+        let sim = Simulator::new(crate::galerkin::GalerkinModel::oscillator(o)?)?;
+        Ok(Self::new(sim, crate::restitution::impulse_response(1, r)?)?)
+    }
+
+    /// The sticking phase's constrained flow.
+    pub fn sticking(&self) -> &Sticking {
+        self.sticking
+            .get_or_init(|| Sticking::new(self.sim.model()))
+    }
+
+    /// Whether the law leaves every velocity orthogonal to φ(1) unchanged (−[R]v = v for
+    /// φ(1)ᵀv = 0, to round-off): then a chatter's limit is the constrained state, and the
+    /// model can stick.
+    pub fn can_stick(&self) -> bool {
+        let n = self.sim.model().modes();
+        let phi = self.sim.model().tip();
+        let projector = DMatrix::identity(n, n) - phi * phi.transpose() / phi.norm_squared();
+        let defect = (-&self.law - DMatrix::identity(n, n)) * projector;
+        defect.amax() <= 1e-12 * (1.0 + self.law.amax())
+    }
+
+    /// The free-flight state s after x at `clock`, ignoring the stop.
+    fn coast(&self, x: &DVector<f64>, clock: &Clock, s: f64) -> DVector<f64> {
+        let flow = self.sim.flow(Region::Free);
+        let phase = self.sim.omega() * clock.offset;
+        flow.state(&flow.modal(x, phase), phase, s)
     }
 
     fn tip_velocity(&self, x: &DVector<f64>) -> f64 {
@@ -175,7 +221,6 @@ impl RigidImpact {
     pub fn run_until(&self, x0: &DVector<f64>, start: Clock, end: Clock) -> RigidRun {
         let n = self.sim.model().modes();
         let period = self.sim.period();
-        let t_end = end.time();
         let mut clock = start;
         let mut x = x0.clone();
         let mut stats = Stats::default();
@@ -226,24 +271,44 @@ impl RigidImpact {
                     time: t,
                     accumulation: t_inf,
                 });
-                if n > 1 {
+                if !self.can_stick() {
                     outcome = Outcome::Chatter(t_inf);
                     clock.advance((t_inf - t).max(0.0));
                     break;
                 }
-                // N = 1: stick at the stop from t_∞
-                clock.advance((t_inf - t).max(0.0));
-                let gap = self.sim.model().params().gap;
-                x[0] = gap / self.sim.model().tip()[0];
-                x[1] = 0.0;
+                // to the accumulation point (the remaining impacts only remove the tip
+                // velocity), onto the stop, and held while the stop has to push
+                let dt = (t_inf - t).max(0.0).min(end.time() - t);
+                x = self.sticking().project(&self.coast(&x, &clock, dt));
+                clock.advance(dt);
+                if !clock.before(&end) {
+                    break;
+                }
+                let phase = self.sim.omega() * clock.offset;
+                if self.sticking().push(&x, phase) <= 0.0 {
+                    // the free motion already pulls away: it flies off at once
+                    impacts.clear();
+                    continue;
+                }
                 events.push(RigidEvent::StickStart { time: clock.time() });
-                match self.release_time(&clock) {
-                    Some(dt) if clock.time() + dt < t_end => {
-                        clock.advance(dt);
+                let (release, state) = self.sticking().hold(
+                    &x,
+                    &clock,
+                    end.time() - clock.time(),
+                    self.sim.h_min(),
+                    self.sim.settings().root_tolerance,
+                    &mut stats,
+                );
+                x = state;
+                match release {
+                    Some(s) => {
+                        clock.advance(s);
                         events.push(RigidEvent::StickEnd { time: clock.time() });
                         impacts.clear();
+                        // the next flight's speeds are measured afresh
+                        v_scale = 0.0;
                     }
-                    _ => {
+                    None => {
                         clock = end;
                         break;
                     }
@@ -282,29 +347,5 @@ impl RigidImpact {
         let (r1, r2) = (d[1] / d[0], d[2] / d[1]);
         let geometric = r1 > 0.0 && r2 > 0.0 && r2 < 1.0 && ((r2 - r1) / r2).abs() < 0.1;
         (geometric && d[2] < 1e-6 * period).then(|| t_n + d[2] * r2 / (1.0 - r2))
-    }
-
-    /// N = 1, stuck at the stop: the time until the free-flight tip acceleration,
-    /// proportional to a(θ) = f₁ cos θ − k₁η with η = d₀/φ₁(1), turns away from the stop
-    /// (None: never). Writing f₁ cos θ = |f₁| cos(θ − φ₀), φ₀ ∈ {0, π}, the release is the
-    /// first downward zero θ = φ₀ + arccos(k₁η/|f₁|) + 2πm after the current phase.
-    fn release_time(&self, clock: &Clock) -> Option<f64> {
-        let m = &self.sim.model();
-        let f1 = m.forcing_amplitude()[0];
-        let hold = m.modal_stiffness()[0] * m.params().gap / m.tip()[0];
-        let omega = self.sim.omega();
-        let theta0 = omega * clock.offset;
-        let now = f1 * theta0.cos() - hold;
-        if now < 0.0 {
-            return Some(0.0);
-        }
-        if omega == 0.0 || -f1.abs() - hold >= 0.0 {
-            return None; // pushed into the stop for ever
-        }
-        let two_pi = 2.0 * std::f64::consts::PI;
-        let phi0 = if f1 >= 0.0 { 0.0 } else { std::f64::consts::PI };
-        let base = phi0 + (hold / f1.abs()).clamp(-1.0, 1.0).acos();
-        let theta = base + two_pi * ((theta0 - base) / two_pi).ceil();
-        Some((theta - theta0) / omega)
     }
 }
