@@ -208,6 +208,28 @@ pub fn polar(r: f64, theta: f64) -> num_complex::Complex64 {
     num_complex::Complex64::new(r * cos, r * sin)
 }
 
+/// ∫₀^S e^{μs} ds given e^{μS}, accurate also when |μS| is small.
+pub fn exp_integral(
+    mu: num_complex::Complex64,
+    s: f64,
+    growth: num_complex::Complex64,
+) -> num_complex::Complex64 {
+    let z = mu * s;
+    if z.norm() < 0.1 {
+        // S·(1 + z/2 + z²/6 + …), 12 terms: error < 0.1¹²/12! ≈ 2e-21
+        let mut term = num_complex::Complex64::new(s, 0.0);
+        let mut sum = term;
+        for n in 2..14 {
+            term *= z / n as f64;
+            sum += term;
+        }
+        sum
+    } else {
+        // |e^z − 1| ≥ 1 − e^{−0.1} here: no catastrophic cancellation
+        (growth - 1.0) / mu
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

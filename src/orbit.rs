@@ -139,6 +139,58 @@ pub fn settle(
     Ok(orbit)
 }
 
+/// [`settle`] in chunks: `chunk` more periods at a time until the orbit over the `window`
+/// after them is periodic, or `max_transient` periods have been discarded. Returns the
+/// orbit and the periods discarded before its window (for lightly damped models, whose
+/// transients last thousands of periods, a fixed transient would either waste time or
+/// label an unsettled run).
+pub fn settle_until_periodic(
+    sim: &Simulator,
+    x0: &DVector<f64>,
+    chunk: u64,
+    window: u64,
+    max_transient: u64,
+) -> Result<(Orbit, u64), Error> {
+    let mut x = x0.clone();
+    let mut discarded = 0;
+    loop {
+        // continue from where the last window ended, on the same clock
+        let start = sim.clock_at_cycle(discarded as i64);
+        x = sim.run_from(&x, start, chunk, &mut ())?.state;
+        discarded += chunk;
+        let o = settle_from(sim, &x, discarded as i64, window)?;
+        if o.kind != OrbitKind::NotPeriodic || discarded + window >= max_transient {
+            return Ok((o, discarded));
+        }
+        x = o.state.clone();
+        discarded += window;
+    }
+}
+
+/// The window of [`settle`] from state x at the start of cycle `cycle`.
+fn settle_from(sim: &Simulator, x: &DVector<f64>, cycle: i64, window: u64) -> Result<Orbit, Error> {
+    let start = sim.clock_at_cycle(cycle);
+    let (mut events, mut strobe) = (Events::default(), Strobe::default());
+    let state = sim
+        .run_from(x, start, window, &mut (&mut events, &mut strobe))?
+        .state;
+    let (m, residual) = detect_period(&strobe.states(), PERIODIC_TOLERANCE, MAX_PERIOD);
+    let end = start.cycles + window as i64;
+    let mut orbit = Orbit {
+        kind: OrbitKind::NotPeriodic,
+        residual,
+        events: events.events,
+        dense: Vec::new(),
+        window_start: start.cycles,
+        state,
+    };
+    if let Some(m) = m {
+        let n = orbit.entries(end - m as i64, end).count() as u64;
+        orbit.kind = OrbitKind::Periodic { m, n };
+    }
+    Ok(orbit)
+}
+
 /// A settled orbit of the rigid-impact model.
 #[derive(Debug, Clone, Serialize)]
 pub struct RigidOrbit {

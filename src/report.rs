@@ -54,6 +54,8 @@ pub enum KeyValue {
     Float(Cited),
     /// A label.
     Text(String),
+    /// A list of cited floats (a spectrum, a profile), in order.
+    Series(Vec<Cited>),
 }
 
 /// What a unit of the key numbers means (the paper's non-dimensional beam: length, time
@@ -137,6 +139,11 @@ impl KeyValue {
         match self {
             KeyValue::Integer(i) => i.to_string(),
             KeyValue::Text(t) => t.clone(),
+            KeyValue::Series(v) => v
+                .iter()
+                .map(|c| pretty(c.value, c.digits))
+                .collect::<Vec<_>>()
+                .join(", "),
             KeyValue::Float(c) if !with_uncertainty => pretty(c.value, c.digits),
             KeyValue::Float(c) => {
                 let unit = if c.unit.is_empty() {
@@ -175,6 +182,23 @@ impl std::fmt::Display for KeyValue {
                 Ok(())
             }
             KeyValue::Text(s) => write!(f, "{s}"),
+            KeyValue::Series(v) => {
+                let items: Vec<String> = v
+                    .iter()
+                    .map(|c| {
+                        format!(
+                            "{} ± {}",
+                            format_sig(c.value, c.digits),
+                            format_sig(c.uncertainty.value, 1)
+                        )
+                    })
+                    .collect();
+                write!(f, "[{}]", items.join(", "))?;
+                match v.first() {
+                    Some(c) if !c.unit.is_empty() => write!(f, " {}", c.unit),
+                    _ => Ok(()),
+                }
+            }
         }
     }
 }
@@ -229,6 +253,31 @@ impl KeyNumbers {
         );
     }
 
+    /// Adds a list of floats, each kept to the digits its uncertainty supports (at most
+    /// `digits`), with one unit and one basis for the uncertainties.
+    pub fn series(
+        &mut self,
+        name: impl Into<String>,
+        values: &[(f64, f64)],
+        digits: usize,
+        basis: &str,
+        unit: &str,
+    ) {
+        let cited = values
+            .iter()
+            .map(|&(value, u)| {
+                let d = digits.min(supported_digits(value, u)).max(1);
+                Cited {
+                    value: round_sig(value, d),
+                    digits: d,
+                    uncertainty: Uncertainty::new(u, basis),
+                    unit: unit.to_string(),
+                }
+            })
+            .collect();
+        self.0.push((name.into(), KeyValue::Series(cited)));
+    }
+
     /// Adds an integer.
     pub fn integer(&mut self, name: impl Into<String>, value: i64) {
         self.0.push((name.into(), KeyValue::Integer(value)));
@@ -258,6 +307,13 @@ impl KeyNumbers {
             let v = match v {
                 KeyValue::Integer(i) => json!({ "value": i }),
                 KeyValue::Text(s) => json!({ "value": s }),
+                KeyValue::Series(v) => json!({
+                    "values": v.iter().map(|c| c.value).collect::<Vec<_>>(),
+                    "uncertainties": v.iter().map(|c| c.uncertainty.value).collect::<Vec<_>>(),
+                    "uncertainty_basis": v.first().map(|c| c.uncertainty.basis.clone()),
+                    "unit": v.first().map(|c| c.unit.clone()),
+                    "unit_meaning": v.first().and_then(|c| unit_meaning(&c.unit)),
+                }),
                 KeyValue::Float(c) => json!({
                     "value": c.value,
                     "uncertainty": c.uncertainty.value,

@@ -420,3 +420,27 @@ fn the_energetic_restitution_map_is_converged_where_it_is_coloured_and_thread_in
     .unwrap();
     assert!((r - f6.coefficient.unwrap().value().unwrap()).abs() < p.convergence_tolerance);
 }
+
+#[test]
+fn figure_9_contacts_and_spectrum() {
+    use impacting_cantilever::orbit::OrbitKind;
+    use impacting_cantilever::scenes::fig9::{compute, Fig9Params};
+    let d = compute(&Fig9Params::test(), &impacting_cantilever::scene::Silent).unwrap();
+    // at d₀ = 0: four contact intervals, five penetration maxima, for every truncation
+    assert_eq!(d.count.kind, OrbitKind::Periodic { m: 1, n: 4 });
+    assert_eq!(d.count.maxima, Some(5.0));
+    for (n, c) in &d.by_modes {
+        assert_eq!(c.kind, d.count.kind, "N = {n}");
+    }
+    // the exact spectrum agrees with the finer DFT within that DFT's error estimate
+    let (error, richardson) = d.dft_check;
+    assert!(
+        error <= 2.0 * richardson + 1e-12,
+        "{error:e} vs {richardson:e}"
+    );
+    // the peaks beyond the fundamental belong to modes 2, 3 and 4
+    let modes: Vec<usize> = d.peaks.iter().map(|p| p.mode).collect();
+    assert_eq!(modes, vec![2, 3, 4]);
+    // "significant energy in the higher modes"
+    assert!(d.higher_harmonic_share > 0.1);
+}

@@ -26,5 +26,7 @@ registry! {
     fig5::Fig5,
     fig6::Fig6,
     energetic_map::EnergeticMap,
+    fig9::Fig9,
+    experiment::Experiment,
     work_precision::WorkPrecision,
 }

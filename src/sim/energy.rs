@@ -4,7 +4,7 @@
 
 use crate::flow::{decay, Block2, RegionFlow, TermKind};
 use crate::galerkin::GalerkinModel;
-use crate::numerics::polar;
+use crate::numerics::{exp_integral, polar};
 use nalgebra::{DMatrix, DVector};
 use num_complex::Complex64;
 
@@ -179,24 +179,6 @@ impl EnergyTables {
             forcing,
             blocks,
         }
-    }
-}
-
-/// ∫₀^S e^{μs} ds given e^{μS}, accurate also when |μS| is small.
-fn exp_integral(mu: Complex64, s: f64, growth: Complex64) -> Complex64 {
-    let z = mu * s;
-    if z.norm() < 0.1 {
-        // S·(1 + z/2 + z²/6 + …), 12 terms: error < 0.1¹²/12! ≈ 2e-21
-        let mut term = Complex64::new(s, 0.0);
-        let mut sum = term;
-        for n in 2..14 {
-            term *= z / n as f64;
-            sum += term;
-        }
-        sum
-    } else {
-        // |e^z − 1| ≥ 1 − e^{−0.1} here: no catastrophic cancellation
-        (growth - 1.0) / mu
     }
 }
 
