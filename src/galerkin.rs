@@ -114,6 +114,19 @@ pub struct Oscillator {
     pub stop_stiffness: f64,
 }
 
+/// The free modes of a discretised beam, mass-normalised ([`GalerkinModel::from_modes`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FreeModes {
+    /// k_j, the modal stiffnesses (squared free frequencies).
+    pub stiffness: Vec<f64>,
+    /// t_j, each mode's tip displacement.
+    pub tip: Vec<f64>,
+    /// c_j, the modal damping.
+    pub damping: Vec<f64>,
+    /// f_j, the modal forcing amplitudes.
+    pub forcing: Vec<f64>,
+}
+
 /// Parameters of the Galerkin model, validated by [`GalerkinModel::new`].
 #[derive(Debug, Clone)]
 pub struct GalerkinParams {
@@ -251,6 +264,43 @@ impl GalerkinModel {
             tip: DVector::from_element(1, o.tip_gain),
             damping: DVector::from_element(1, o.damping),
             forcing_amplitude: DVector::from_element(1, o.forcing),
+        })
+    }
+
+    /// A beam model given by the free modes of another discretisation (the finite-element
+    /// beam, [`crate::fe`]): K⁻ = diag(k_j), tip values t_j, damping diag(c_j), forcing
+    /// amplitudes f_j, so that K⁺ = K⁻ + (k/4)ttᵀ and F⁺ = F⁻ + (kd₀/4)t as in eq (9). It has
+    /// no continuum profile, so [`Self::modal_state`] refuses it.
+    pub fn from_modes(modes: &FreeModes, params: GalerkinParams) -> Result<Self, ParameterError> {
+        let n = error::count_in_range("modes N", modes.stiffness.len(), 2 * MAX_MODES)?;
+        error::finite_non_negative("stop stiffness k", params.stop_stiffness)?;
+        error::finite("gap d₀", params.gap)?;
+        let same = [&modes.tip, &modes.damping, &modes.forcing]
+            .iter()
+            .all(|v| v.len() == n);
+        if !same {
+            return Err(ParameterError::new(
+                "free-mode lists",
+                "of unequal length",
+                "one entry per mode in each",
+            ));
+        }
+        for j in 0..n {
+            error::finite_positive("modal stiffness", modes.stiffness[j])?;
+            error::finite("modal tip value", modes.tip[j])?;
+            error::finite_non_negative("modal damping", modes.damping[j])?;
+            error::finite("modal forcing amplitude", modes.forcing[j])?;
+        }
+        if let Some(f) = &params.forcing {
+            error::finite_positive("forcing frequency ω", f.omega)?;
+        }
+        Ok(Self {
+            params,
+            beta: Vec::new(),
+            modal_stiffness: DVector::from_column_slice(&modes.stiffness),
+            tip: DVector::from_column_slice(&modes.tip),
+            damping: DVector::from_column_slice(&modes.damping),
+            forcing_amplitude: DVector::from_column_slice(&modes.forcing),
         })
     }
 

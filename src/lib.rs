@@ -50,10 +50,12 @@
 pub mod asymptotics;
 pub mod citation;
 pub mod continuum;
+pub mod convergence;
 pub mod dopri5;
 pub mod energetic;
 pub mod error;
 pub mod experiment;
+pub mod fe;
 pub mod flow;
 pub mod galerkin;
 pub mod golden;

@@ -318,3 +318,34 @@ fn citation_cff_matches_the_crate_and_the_cite_command() {
     assert!(citation::PAPER_PLAIN.contains("doi:10.1098/rsta.2012.0434"));
     assert!(cff.contains("doi: 10.1098/rsta.2012.0434"));
 }
+
+#[test]
+fn modes_needed_answers_and_refuses_bad_input() {
+    let (code, out, _) = cantilever(&[
+        "modes-needed",
+        "--stop-stiffness",
+        "100",
+        "--tolerance",
+        "1e-2",
+    ]);
+    assert_eq!(code, 0);
+    assert!(out.starts_with("N* = "), "{out}");
+    assert!(
+        out.contains("criterion") && out.contains("observable: one contact"),
+        "{out}"
+    );
+    for bad in [
+        ["--stop-stiffness", "-1"],
+        ["--stop-stiffness", "nan"],
+        ["--stop-stiffness", "1e9"],
+    ] {
+        let (code, _, err) = cantilever(&["modes-needed", bad[0], bad[1]]);
+        assert_eq!(code, 2, "{bad:?}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.contains("--stop-stiffness"), "{err}");
+    }
+    let (code, _, err) =
+        cantilever(&["modes-needed", "--stop-stiffness", "10", "--tolerance", "0"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("--tolerance"), "{err}");
+}

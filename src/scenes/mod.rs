@@ -28,5 +28,6 @@ registry! {
     energetic_map::EnergeticMap,
     fig9::Fig9,
     experiment::Experiment,
+    stiffness_matching::StiffnessMatching,
     work_precision::WorkPrecision,
 }

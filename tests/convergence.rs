@@ -1,0 +1,133 @@
+//! Stiffness matching (§2.3): the finite-element beam against the continuum, and the
+//! Galerkin model's convergence at fixed k against it (code-to-code).
+
+use impacting_cantilever::continuum;
+use impacting_cantilever::convergence::{self, Discretisation, Needed, Setup, Study};
+use impacting_cantilever::fe::FeBeam;
+use impacting_cantilever::galerkin::first_modal_stiffness;
+use impacting_cantilever::verification::observed_order;
+
+#[test]
+fn element_eigenvalues_converge_to_eq_3_with_order_four() {
+    let k = 1000.0 * first_modal_stiffness();
+    let sizes = [4usize, 8, 16, 32];
+    let (mut free, mut held) = (Vec::new(), Vec::new());
+    for &n in &sizes {
+        let beam = FeBeam::new(n).unwrap();
+        let contact = beam.contact_eigenvalues(k).unwrap();
+        let e = |l: f64, exact: f64| (l - exact).abs() / exact;
+        // mode 2: in the asymptotic range from n = 4 on
+        free.push(e(
+            beam.eigenvalues()[1],
+            continuum::free_root(2).unwrap().powi(4),
+        ));
+        held.push(e(contact[1], continuum::root(2, k).unwrap().powi(4)));
+        // each mode's tip deflection tends to φ_i(1) = 2 (mass-normalised like ∫φ² = 1)
+        let tip = beam.tip()[0];
+        assert!((tip - 2.0).abs() < 2e-3, "n = {n}: tip {tip}");
+    }
+    let h: Vec<f64> = sizes.iter().map(|&n| 1.0 / n as f64).collect();
+    // cubic Hermite elements with consistent mass: eigenvalue error O(h^4); ±0.15 covers
+    // the pre-asymptotic drift measured over this ladder
+    for (what, e) in [("free", &free), ("held", &held)] {
+        let p = observed_order(&h, e);
+        assert!((p - 4.0).abs() < 0.15, "{what}: order {p}, errors {e:?}");
+    }
+}
+
+#[test]
+fn bad_element_counts_are_refused() {
+    assert!(FeBeam::new(0).is_err());
+    assert!(FeBeam::new(100_000).is_err());
+}
+
+fn exit_velocity(d: Discretisation, k_over_k1: f64) -> f64 {
+    let s = Setup {
+        k_over_k1,
+        zeta1: 0.01,
+        omega_over_w1: 2.0,
+        periods: 2,
+    };
+    convergence::observe(d, &s).unwrap().exit_tip_velocity
+}
+
+#[test]
+fn galerkin_and_element_limits_agree_within_their_uncertainties() {
+    let k = 100.0;
+    let g = [10usize, 20, 40];
+    let e = [8usize, 16, 32];
+    let gv: Vec<f64> = g
+        .iter()
+        .map(|&n| exit_velocity(Discretisation::Galerkin(n), k))
+        .collect();
+    let ev: Vec<f64> = e
+        .iter()
+        .map(|&n| exit_velocity(Discretisation::Elements(n), k))
+        .collect();
+    let gs = Study::new(g.to_vec(), gv, 1.0).unwrap();
+    let es = Study::new(e.to_vec(), ev, 1.0).unwrap();
+    // the k/β_N³ tail of the stop's flexibility: order 3 in N; cubic elements: 4 in h
+    let (pg, pe) = (gs.order.unwrap(), es.order.unwrap());
+    assert!((pg - 3.0).abs() < 0.2, "Galerkin order {pg}");
+    assert!((pe - 4.0).abs() < 0.3, "element order {pe}");
+    let gap = (gs.limit - es.limit).abs();
+    assert!(
+        gap <= gs.uncertainty + es.uncertainty,
+        "limits {} ± {:e} and {} ± {:e}",
+        gs.limit,
+        gs.uncertainty,
+        es.limit,
+        es.uncertainty
+    );
+    // and the uncertainties are small enough to make the comparison mean something
+    assert!(gs.uncertainty + es.uncertainty < 1e-4);
+}
+
+#[test]
+fn modes_needed_meets_its_tolerance_against_the_element_beam() {
+    let (k, tol) = (1000.0, 1e-2);
+    let m = convergence::modes_needed(k, tol, 0.01).unwrap();
+    let Needed::Scanned(n) = m.needed else {
+        panic!("1e-2 at k = 1000k₁ is within the scan: {:?}", m.needed)
+    };
+    assert!(
+        n >= m.criterion,
+        "N* = {n} below the criterion's {}",
+        m.criterion
+    );
+    // independently: the element beam with 32 elements (error ~1e-5 here) against the
+    // Galerkin model at N* and at the previous scanned N
+    let reference = exit_velocity(Discretisation::Elements(32), k);
+    let at = exit_velocity(Discretisation::Galerkin(n), k);
+    assert!(
+        (at - reference).abs() <= tol + 1e-4,
+        "N* = {n}: {at} vs {reference}"
+    );
+    let i = convergence::SCAN.iter().position(|&m| m == n).unwrap();
+    let studies_worst = m
+        .studies
+        .iter()
+        .map(|(_, s)| s.relative_errors()[i - 1])
+        .fold(0.0, f64::max);
+    assert!(
+        studies_worst > tol,
+        "the previous N already met the tolerance"
+    );
+}
+
+#[test]
+fn study_recovers_a_power_law_and_answers_on_and_beyond_the_scan() {
+    let sizes: Vec<usize> = vec![1, 2, 4, 8, 16, 32, 64];
+    let values: Vec<f64> = sizes.iter().map(|&n| 1.0 + (n as f64).powi(-3)).collect();
+    let s = Study::new(sizes, values, 1.0).unwrap();
+    assert!((s.order.unwrap() - 3.0).abs() < 1e-6);
+    assert!((s.limit - 1.0).abs() < 1e-12);
+    // 8⁻³ = 1.95e-3 ≤ 2e-3 < 4⁻³
+    assert_eq!(s.needed(2e-3), Needed::Scanned(8));
+    // 1e-9 needs N = 1000: beyond the scan, estimated from the order
+    match s.needed(1e-9) {
+        Needed::Beyond { estimate } => assert!((estimate - 1000.0).abs() < 1.0, "{estimate}"),
+        other => panic!("{other:?}"),
+    }
+    assert!(Study::new(vec![1, 2, 3], vec![1.0, 1.0, 1.0], 1.0).is_err());
+}
