@@ -158,20 +158,25 @@ pub fn observe_forced(d: Discretisation, s: &Setup) -> Result<(f64, f64), Error>
     forced(build(d, s)?.forced, s.periods)
 }
 
-fn one_contact(b: &Built, d: Discretisation) -> Result<(f64, f64, f64), Error> {
-    let m = b.free.modes();
+/// The state [η; η̇] and the event when the tip first leaves the stop after the start.
+fn exit(b: &Built, d: Discretisation) -> Result<crate::sim::Event, Error> {
     let sim = Simulator::new(b.free.clone())?;
     // unforced: one bookkeeping "period" is one time unit, far longer than the contact
     let mut events = Events::with_states();
     sim.run(&b.start, 1, &mut events)?;
-    let exit = events
+    events
         .events
-        .iter()
+        .into_iter()
         .find(|e| !e.entering && !e.grazing)
-        .ok_or_else(|| Error::Unsupported(format!("{d:?}: the tip did not leave the stop")))?;
-    let state = exit.state.clone().unwrap_or_default();
+        .ok_or_else(|| Error::Unsupported(format!("{d:?}: the tip did not leave the stop")))
+}
+
+fn one_contact(b: &Built, d: Discretisation) -> Result<(f64, f64, f64), Error> {
+    let m = b.free.modes();
+    let e = exit(b, d)?;
+    let state = e.state.unwrap_or_default();
     let mode1 = b.mode1.iter().zip(&state[m..]).map(|(r, v)| r * v).sum();
-    Ok((exit.time, exit.tip_velocity, mode1))
+    Ok((e.time, e.tip_velocity, mode1))
 }
 
 fn forced(model: GalerkinModel, periods: u64) -> Result<(f64, f64), Error> {
@@ -189,16 +194,8 @@ fn forced(model: GalerkinModel, periods: u64) -> Result<(f64, f64), Error> {
 /// (for the velocity profile w_t = Σφ_jη̇_j).
 pub fn post_contact_velocities(modes: usize, s: &Setup) -> Result<Vec<f64>, Error> {
     let d = Discretisation::Galerkin(modes);
-    let b = build(d, s)?;
-    let sim = Simulator::new(b.free.clone())?;
-    let mut events = Events::with_states();
-    sim.run(&b.start, 1, &mut events)?;
-    let exit = events
-        .events
-        .iter()
-        .find(|e| !e.entering && !e.grazing)
-        .ok_or_else(|| Error::Unsupported(format!("{d:?}: the tip did not leave the stop")))?;
-    Ok(exit.state.clone().unwrap_or_default()[modes..].to_vec())
+    let state = exit(&build(d, s)?, d)?.state.unwrap_or_default();
+    Ok(state[modes..].to_vec())
 }
 
 /// A refinement study of one observable: values on increasing resolutions, the limit by
@@ -320,6 +317,29 @@ pub enum Needed {
     Unresolved,
 }
 
+impl Needed {
+    /// The number of modes it stands for (infinite when unresolved).
+    pub fn modes(&self) -> f64 {
+        match self {
+            Self::Scanned(n) => *n as f64,
+            Self::Beyond { estimate } => *estimate,
+            Self::Unresolved => f64::INFINITY,
+        }
+    }
+
+    /// N* for every observable at once: the largest of the studies' answers, with the name
+    /// of the observable that sets it.
+    pub fn hardest<'a>(
+        studies: impl Iterator<Item = (&'a str, &'a Study)>,
+        tol: f64,
+    ) -> (Self, String) {
+        studies
+            .map(|(name, s)| (s.needed(tol), name.to_string()))
+            .max_by(|a, b| a.0.modes().total_cmp(&b.0.modes()))
+            .unwrap_or((Self::Unresolved, String::new()))
+    }
+}
+
 impl std::fmt::Display for Needed {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
@@ -422,16 +442,7 @@ pub fn modes_needed(k_over_k1: f64, tol: f64, zeta1: f64) -> Result<ModesNeeded,
         let scale = [v.last().map_or(1.0, |d| d.abs()), 1.0, 0.5][i];
         studies.push((name.to_string(), Study::new(SCAN.to_vec(), v, scale)?));
     }
-    let rank = |n: &Needed| match n {
-        Needed::Scanned(n) => *n as f64,
-        Needed::Beyond { estimate } => 1e9 + estimate,
-        Needed::Unresolved => f64::INFINITY,
-    };
-    let (needed, hardest) = studies
-        .iter()
-        .map(|(name, s)| (s.needed(tol), name.clone()))
-        .max_by(|a, b| rank(&a.0).total_cmp(&rank(&b.0)))
-        .unwrap_or((Needed::Unresolved, String::new()));
+    let (needed, hardest) = Needed::hardest(studies.iter().map(|(n, s)| (n.as_str(), s)), tol);
     Ok(ModesNeeded {
         k_over_k1,
         tolerance: tol,

@@ -22,9 +22,11 @@ fn element_eigenvalues_converge_to_eq_3_with_order_four() {
             continuum::free_root(2).unwrap().powi(4),
         ));
         held.push(e(contact[1], continuum::root(2, k).unwrap().powi(4)));
-        // each mode's tip deflection tends to φ_i(1) = 2 (mass-normalised like ∫φ² = 1)
+        // mode 1's tip deflection tends to φ₁(1) = 2 (mass-normalised like ∫φ² = 1); its
+        // discretisation error is 1.3e-4 at n = 4 and falls like h⁴, so 2e-4 bounds the
+        // ladder while a wrong normalisation (a factor or a sign) fails by O(1)
         let tip = beam.tip()[0];
-        assert!((tip - 2.0).abs() < 2e-3, "n = {n}: tip {tip}");
+        assert!((tip - 2.0).abs() < 2e-4, "n = {n}: tip {tip}");
     }
     let h: Vec<f64> = sizes.iter().map(|&n| 1.0 / n as f64).collect();
     // cubic Hermite elements with consistent mass: eigenvalue error O(h^4); ±0.15 covers
@@ -38,7 +40,8 @@ fn element_eigenvalues_converge_to_eq_3_with_order_four() {
 #[test]
 fn bad_element_counts_are_refused() {
     assert!(FeBeam::new(0).is_err());
-    assert!(FeBeam::new(100_000).is_err());
+    assert!(FeBeam::new(201).is_err());
+    assert!(FeBeam::new(200).is_ok());
 }
 
 fn exit_velocity(d: Discretisation, k_over_k1: f64) -> f64 {
@@ -66,10 +69,13 @@ fn galerkin_and_element_limits_agree_within_their_uncertainties() {
         .collect();
     let gs = Study::new(g.to_vec(), gv, 1.0).unwrap();
     let es = Study::new(e.to_vec(), ev, 1.0).unwrap();
-    // the k/β_N³ tail of the stop's flexibility: order 3 in N; cubic elements: 4 in h
+    // the k/β_N³ tail of the stop's flexibility: order 3 in N; cubic elements: 4 in h.
+    // Measured on these ladders: 3.003 and 4.17 (the element ladder 8/16/32 is still
+    // pre-asymptotic: 4.04 on 16/32/64). Widths 0.05 and 0.25 hold those with room for
+    // round-off, while an order-2 or order-5 method would fail
     let (pg, pe) = (gs.order.unwrap(), es.order.unwrap());
-    assert!((pg - 3.0).abs() < 0.2, "Galerkin order {pg}");
-    assert!((pe - 4.0).abs() < 0.3, "element order {pe}");
+    assert!((pg - 3.0).abs() < 0.05, "Galerkin order {pg}");
+    assert!((pe - 4.0).abs() < 0.25, "element order {pe}");
     let gap = (gs.limit - es.limit).abs();
     assert!(
         gap <= gs.uncertainty + es.uncertainty,
@@ -95,8 +101,8 @@ fn modes_needed_meets_its_tolerance_against_the_element_beam() {
         "N* = {n} below the criterion's {}",
         m.criterion
     );
-    // independently: the element beam with 32 elements (error ~1e-5 here) against the
-    // Galerkin model at N* and at the previous scanned N
+    // independently: the element beam with 32 elements against the Galerkin model at N*;
+    // the margin 1e-4 is that beam's own error here (5.8e-5 from the 32/64 ladder)
     let reference = exit_velocity(Discretisation::Elements(32), k);
     let at = exit_velocity(Discretisation::Galerkin(n), k);
     assert!(

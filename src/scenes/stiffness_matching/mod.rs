@@ -222,12 +222,9 @@ pub fn compute(p: &MatchingParams, progress: &dyn Progress) -> Result<MatchingDa
             .tolerances
             .iter()
             .map(|&tol| {
-                let worst = observables
-                    .iter()
-                    .map(|c| (c.galerkin.needed(tol), c.name.clone()))
-                    .max_by(|a, b| rank(&a.0).total_cmp(&rank(&b.0)))
-                    .unwrap_or((Needed::Unresolved, String::new()));
-                (tol, worst.0, worst.1)
+                let all = observables.iter().map(|c| (c.name.as_str(), &c.galerkin));
+                let (n, by) = Needed::hardest(all, tol);
+                (tol, n, by)
             })
             .collect();
         let k_abs = k * crate::galerkin::first_modal_stiffness();
@@ -280,15 +277,6 @@ fn eigen_error(n: usize, k_over_k1: f64) -> Result<(usize, f64, f64), Error> {
         contact = contact.max((held[i - 1] - c).abs() / c);
     }
     Ok((n, free, contact))
-}
-
-/// Orders answers: a scanned N by its value, then estimates beyond the scan, then unresolved.
-fn rank(n: &Needed) -> f64 {
-    match n {
-        Needed::Scanned(n) => *n as f64,
-        Needed::Beyond { estimate } => 1e6 + estimate,
-        Needed::Unresolved => f64::INFINITY,
-    }
 }
 
 /// The velocity profiles after one contact at finite k and under \[R\]_N, per unit entry
