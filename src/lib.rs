@@ -23,17 +23,24 @@
 //! |---|---|
 //! | [`continuum`] | §2.1, eqs (1)–(4): the beam with a compliant stop, roots of eq (3), mode shapes (2) |
 //! | [`galerkin`] | §2.2, §5.1, eqs (5)–(9), (31)–(35): the N-mode Galerkin compliant (bilinear) model |
+//! | [`two_basis`] | §2.2, first half: the two-basis switching truncation (constrained modes in contact, free modes out of it, projected at each switch) |
+//! | [`fe`] | an independent Hermite-cubic finite-element beam (eqs 1, 31–33), simulated exactly in its own modes |
+//! | [`convergence`] | §2.3: refinement studies at fixed k, Richardson limits, modes needed N*(k) |
 //! | [`flow`] | eq (36): the exact solution inside one region |
 //! | [`sim`] | §5.2: the exact simulator through its switches — clock, signal, certified crossing search, maximum, energy, observers, driver |
 //! | [`dopri5`] | an independent Dormand–Prince 5(4) integrator with event location, for cross-verification |
 //! | [`restitution`] | §3–4, eqs (12), (14), (28)–(29): the modal restitution laws |
 //! | [`asymptotics`] | §4.1–4.3, eqs (18)–(19), (23): impact asymptotics as k → ∞ |
 //! | [`rigid`] | §3: the rigid-impact N-mode model with any law, and its chattering policy |
+//! | [`energetic`] | §5.4, eqs (38)–(39): the energetic coefficient of restitution |
+//! | [`harmonics`] | Figure 9(b): the tip velocity's harmonic spectrum in closed form |
+//! | [`experiment`] | §6: the rig in the model's terms by beam theory |
 //! | [`orbit`] | §5.2: the stroboscopic map, period detection (m, n), seeded random starts |
 //! | [`problems`] | the paper's parameter sets as named constructors (Figures 3, 4, 6, 9; the linear model) |
 //! | [`verification`] | observed orders, Richardson extrapolation and GCI |
 //! | [`numerics`] | Brent's root finder, Gauss–Legendre quadrature, a fast sine–cosine |
 //! | [`golden`] | independent reference values (mpmath roots, Blevins' table) |
+//! | [`citation`] | how to cite a number: software, version, paper, as text and BibTeX |
 //! | [`provenance`] | version, commit, toolchain, date and resolution of generated numbers |
 //! | [`scene`] | the Scene trait: one result of the paper from parameters to data, key numbers, verdict, plots |
 //! | [`scenes`] | the registry and one folder per result |
@@ -71,6 +78,7 @@ pub mod rigid;
 pub mod scene;
 pub mod scenes;
 pub mod sim;
+pub mod two_basis;
 pub mod verification;
 
 #[cfg(feature = "book")]

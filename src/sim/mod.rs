@@ -38,7 +38,7 @@ use crate::flow::{FlowError, RegionFlow, TermKind};
 use crate::galerkin::{GalerkinModel, Region};
 use energy::EnergyTables;
 use nalgebra::DVector;
-use signal::{Target, Term, TipSignal};
+use signal::{Signal, Target, Term, TipSignal};
 use std::sync::OnceLock;
 
 /// Shortest certified step, as a fraction of the forcing period.
@@ -86,6 +86,17 @@ pub struct RunEnd {
     pub clock: Clock,
     /// Work counters.
     pub stats: Stats,
+}
+
+/// The end of one region's flight ([`Simulator::flight`]).
+#[derive(Debug, Clone)]
+pub struct Flight {
+    /// The time after the start at which the state left the region, if within the horizon.
+    pub exit: Option<f64>,
+    /// The state then (or at the horizon).
+    pub state: DVector<f64>,
+    /// The tip velocity then.
+    pub tip_velocity: f64,
 }
 
 /// The simulator: the model and its two exact region flows.
@@ -282,23 +293,82 @@ impl Simulator {
         horizon: f64,
         stats: &mut Stats,
     ) -> (Option<f64>, DVector<f64>) {
+        let f = self.flight(Region::Free, x, clock, horizon, stats);
+        (f.exit, f.state)
+    }
+
+    /// One region's exact flow from `x` at `clock` for at most `horizon`, to the first
+    /// certified crossing *out of* `region` (touches are passed through), whatever side of
+    /// the surface `x` starts on. This is the building block of drivers whose state changes
+    /// at a switch (the two-basis truncation, [`crate::two_basis`]): there a state projected
+    /// into a new basis may lie just beyond the surface. If it does and moves back into
+    /// `region`, the flight goes on from where it re-enters; if it moves on out (or rests),
+    /// the flight ends at once (s = 0).
+    pub fn flight(
+        &self,
+        region: Region,
+        x: &DVector<f64>,
+        clock: &Clock,
+        horizon: f64,
+        stats: &mut Stats,
+    ) -> Flight {
+        let gap = self.model.params().gap;
         let seg = Segment::new(
-            &self.free,
+            self.flow(region),
             x,
-            self.free.omega() * clock.offset,
-            self.model.params().gap,
+            self.omega() * clock.offset,
+            gap,
             self.model.tip(),
         );
         stats.segments += 1;
-        // a touch of the stop is not an impact: free flight goes on through it
+        let out = Target {
+            sign: seg.sign,
+            level: gap,
+        };
+        let p = seg.signal.local(0.0, out);
         let mut from = 0.0;
-        let crossing = loop {
+        if p.g > p.noise() {
+            // beyond the surface: wait for the re-entry, or leave at once
+            let back = Target {
+                sign: -seg.sign,
+                level: gap,
+            };
+            let entry = (p.gd < 0.0)
+                .then(|| {
+                    crossing::first_crossing(
+                        &seg.signal,
+                        back,
+                        0.0,
+                        horizon,
+                        self.h_min(),
+                        self.settings.root_tolerance,
+                        stats,
+                    )
+                })
+                .flatten();
+            match entry {
+                Some(s) => from = s,
+                None if p.gd < 0.0 => {
+                    // still beyond the surface at the horizon
+                    return Flight {
+                        exit: None,
+                        state: seg.state(horizon),
+                        tip_velocity: seg.signal.tip(horizon).1,
+                    };
+                }
+                None => {
+                    return Flight {
+                        exit: Some(0.0),
+                        state: x.clone(),
+                        tip_velocity: seg.signal.tip(0.0).1,
+                    }
+                }
+            }
+        }
+        let exit = loop {
             let found = crossing::first_event(
                 &seg.signal,
-                Target {
-                    sign: 1.0,
-                    level: self.model.params().gap,
-                },
+                out,
                 from,
                 horizon,
                 self.h_min(),
@@ -311,8 +381,12 @@ impl Simulator {
                 _ => break None,
             }
         };
-        let state = seg.state(crossing.unwrap_or(horizon));
-        (crossing, state)
+        let s = exit.unwrap_or(horizon);
+        Flight {
+            exit,
+            state: seg.state(s),
+            tip_velocity: seg.signal.tip(s).1,
+        }
     }
 
     /// Runs `periods` forcing periods from state x at the start of cycle 0 (t = 0).

@@ -17,32 +17,47 @@ const SHOWN: &str = "exit tip velocity";
 pub fn plot(d: &MatchingData) -> Result<String, RenderError> {
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (WIDTH, 1500)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, (WIDTH, 2000)).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
-        let rows = root.split_evenly((3, 1));
+        let rows = root.split_evenly((4, 1));
         let top = rows[0].split_evenly((1, 2));
-        errors(&top[0], d, true)?;
-        errors(&top[1], d, false)?;
+        errors(&top[0], d, Ladder::Galerkin)?;
+        errors(&top[1], d, Ladder::Elements)?;
         needed(&rows[1], d)?;
-        let bottom = rows[2].split_evenly((1, 2));
-        profiles(&bottom[0], d, true)?;
-        profiles(&bottom[1], d, false)?;
+        let third = rows[2].split_evenly((1, 2));
+        profiles(&third[0], d, true)?;
+        profiles(&third[1], d, false)?;
+        let bottom = rows[3].split_evenly((1, 2));
+        errors(&bottom[0], d, Ladder::TwoBasis)?;
+        super::render_two_basis::losses(&bottom[1], d)?;
         root.present().map_err(drawing)?;
     }
     Ok(svg)
 }
 
+/// Which refinement ladder.
+#[derive(Clone, Copy, PartialEq)]
+enum Ladder {
+    Galerkin,
+    Elements,
+    TwoBasis,
+}
+
 fn errors<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
     d: &MatchingData,
-    galerkin: bool,
+    ladder: Ladder,
 ) -> Result<(), RenderError> {
     let series: Vec<(f64, Vec<(f64, f64)>)> = d
         .stiffness
         .iter()
         .filter_map(|a| {
             let c = a.observables.iter().find(|c| c.name == SHOWN)?;
-            let study = if galerkin { &c.galerkin } else { &c.elements };
+            let study = match ladder {
+                Ladder::Galerkin => &c.galerkin,
+                Ladder::Elements => &c.elements,
+                Ladder::TwoBasis => &c.two_basis,
+            };
             let pts = study
                 .sizes
                 .iter()
@@ -56,10 +71,10 @@ fn errors<DB: DrawingBackend>(
         })
         .collect();
     let xmax = series.iter().flat_map(|s| s.1.iter().map(|p| p.0)).fold(2.0, f64::max);
-    let (title, xdesc) = if galerkin {
-        ("(a) Galerkin model: error against N", "N (modes)")
-    } else {
-        ("(b) finite elements: error against n", "n (elements)")
+    let (title, xdesc) = match ladder {
+        Ladder::Galerkin => ("(a) Galerkin model: error against N", "N (modes)"),
+        Ladder::Elements => ("(b) finite elements: error against n", "n (elements)"),
+        Ladder::TwoBasis => ("(f) two-basis truncation: error against N", "N (modes in each basis)"),
     };
     let mut chart = ChartBuilder::on(area)
         .caption(title, CAPTION_FONT)
