@@ -36,6 +36,7 @@
 //! | [`harmonics`] | Figure 9(b): the tip velocity's harmonic spectrum in closed form |
 //! | [`experiment`] | §6: the rig in the model's terms by beam theory |
 //! | [`orbit`] | §5.2: the stroboscopic map, period detection (m, n), seeded random starts |
+//! | [`shooting`] | §5.2–5.3: periodic orbits by Newton shooting with the exact monodromy, Floquet multipliers |
 //! | [`problems`] | the paper's parameter sets as named constructors (Figures 3, 4, 6, 9; the linear model) |
 //! | [`verification`] | observed orders, Richardson extrapolation and GCI |
 //! | [`numerics`] | Brent's root finder, Gauss–Legendre quadrature, a fast sine–cosine |
@@ -77,6 +78,7 @@ pub mod restitution;
 pub mod rigid;
 pub mod scene;
 pub mod scenes;
+pub mod shooting;
 pub mod sim;
 pub mod two_basis;
 pub mod verification;

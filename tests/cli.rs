@@ -349,3 +349,49 @@ fn modes_needed_answers_and_refuses_bad_input() {
     assert_eq!(code, 2);
     assert!(err.contains("--tolerance"), "{err}");
 }
+
+#[test]
+fn orbit_returns_the_figure_4_orbit_with_its_multipliers() {
+    let (code, out, err) = cantilever(&[
+        "orbit",
+        "--modes",
+        "10",
+        "--stop-stiffness",
+        "100",
+        "--zeta1",
+        "0.01",
+        "--omega",
+        "2",
+        "--periods",
+        "300",
+        "--json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["period_m"], 1);
+    assert_eq!(v["impacts_n"], 1);
+    assert_eq!(v["stable"], true);
+    assert!(v["residual"].as_f64().unwrap() <= 1e-12);
+    let mult = v["multipliers"].as_array().unwrap();
+    assert_eq!(mult.len(), 20);
+    let (re, im) = (mult[0][0].as_f64().unwrap(), mult[0][1].as_f64().unwrap());
+    assert!(re.hypot(im) < 1.0);
+    let (code, _, err) = cantilever(&[
+        "orbit",
+        "--modes",
+        "10",
+        "--zeta1",
+        "0.01",
+        "--omega",
+        "2",
+        "--periods",
+        "10",
+        "--period",
+        "0",
+    ]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("--period") && err.lines().count() == 1,
+        "{err}"
+    );
+}

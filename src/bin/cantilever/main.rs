@@ -4,6 +4,7 @@
 //! allowed.
 
 mod cite;
+mod orbit;
 mod progress;
 mod simulate;
 
@@ -108,6 +109,21 @@ enum Command {
         /// Material damping as the first mode's damping ratio ζ₁ (0 to 0.9).
         #[arg(long, allow_hyphen_values = true, default_value_t = 0.01)]
         zeta1: f64,
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+    },
+    /// One periodic orbit of the compliant model by Newton shooting on the stroboscopic
+    /// map with the exact monodromy, and its Floquet multipliers. The model and start are
+    /// those of `simulate`; the transient (--periods) brings the start near the orbit.
+    ///
+    /// Output fields (--json): period_m, impacts_n (entries into contact per period),
+    /// state ([η; η̇] at the start of a forcing period on the orbit), multipliers (the
+    /// monodromy's eigenvalues as [re, im], largest modulus first), stable (all |μ| < 1),
+    /// residual (‖P^m(x) − x‖∞/‖x‖∞, ≤ 1e-12), iterations, and the parameters.
+    Orbit {
+        #[command(flatten)]
+        args: orbit::Args,
         /// Print JSON.
         #[arg(long)]
         json: bool,
@@ -278,6 +294,18 @@ fn run(cli: Cli) -> Result<(), Failure> {
                     m.criterion
                 );
                 outln!("  observable: one contact at d₀ = 0 from the first-mode velocity profile, unforced, ζ₁ = {zeta1}");
+            }
+            Ok(())
+        }
+        Command::Orbit { args, json } => {
+            let report = orbit::run(&args)?;
+            if json {
+                outln!(
+                    "{}",
+                    serde_json::to_string_pretty(&report).unwrap_or_default()
+                );
+            } else {
+                emit(&orbit::to_text(&report));
             }
             Ok(())
         }

@@ -466,7 +466,7 @@ impl Scene for StiffnessMatching {
         Verdict {
             outcome: if agree == total && tb == total && converging < rigid { Outcome::Reproduced } else { Outcome::Partly },
             evidence: format!(
-                "at every k the Galerkin model converges in N (observed orders {lo:.1} to {hi:.1}, as the k/β_N³ tail predicts) and its limit agrees with the finite-element beam's in {agree} of {total} observables; N*(1e-6) of the exit tip velocity grows like k^{:.2}; the post-contact profile changes by {converging:.1e} between the last two N at finite k and by {rigid:.2} under the rigid law; the two-basis truncation converges to the same limits ({tb} of {total} agree), losing an energy fraction per switch that falls like N^{slo:.1} to N^{shi:.1}",
+                "at every k the Galerkin model converges in N (observed orders {lo:.1} to {hi:.1}, as the k/β_N³ tail predicts) and its limit agrees with the finite-element beam's in {agree} of {total} observables; N*(1e-6) of the exit tip velocity grows like k^{:.2}; the post-contact profile changes by {converging:.1e} between the last two N at finite k and by {rigid:.2} under the rigid law; the two-basis truncation converges to the same limits ({tb} of {total} agree), losing an energy fraction per switch into contact that falls like N^{slo:.1} to N^{shi:.1}",
                 d.needed_slope.map_or(f64::NAN, |s| s.0)
             ),
         }

@@ -208,11 +208,9 @@ fn profiles<DB: DrawingBackend>(
 pub fn table(d: &MatchingData) -> String {
     let header = [
         "$k/k_1$ · observable",
-        "Galerkin limit",
-        "± (GCI)",
+        "Galerkin limit ± GCI",
         "order in $N$",
-        "element limit",
-        "± (GCI)",
+        "element limit ± GCI",
         "order in $n$",
         "agree",
     ];
@@ -224,11 +222,9 @@ pub fn table(d: &MatchingData) -> String {
             a.observables.iter().map(move |c| {
                 vec![
                     format!("{} · {}", cell(a.k_over_k1, 2), c.name),
-                    format!("{:.10}", c.galerkin.limit),
-                    format!("{:.1e}", c.galerkin.uncertainty),
+                    format!("{:.10} ± {:.1e}", c.galerkin.limit, c.galerkin.uncertainty),
                     order(c.galerkin.order),
-                    format!("{:.10}", c.elements.limit),
-                    format!("{:.1e}", c.elements.uncertainty),
+                    format!("{:.10} ± {:.1e}", c.elements.limit, c.elements.uncertainty),
                     order(c.elements.order),
                     if c.agree { "yes" } else { "no" }.to_string(),
                 ]

@@ -49,8 +49,7 @@ pub fn losses<DB: DrawingBackend>(
 pub fn table(d: &MatchingData) -> String {
     let header = [
         "$k/k_1$ · observable",
-        "two-basis limit",
-        "± (GCI)",
+        "two-basis limit ± GCI",
         "order in $N$",
         "Galerkin limit",
         "agree",
@@ -63,8 +62,7 @@ pub fn table(d: &MatchingData) -> String {
             a.observables.iter().map(move |c| {
                 vec![
                     format!("{} · {}", cell(a.k_over_k1, 2), c.name),
-                    format!("{:.10}", c.two_basis.limit),
-                    format!("{:.1e}", c.two_basis.uncertainty),
+                    format!("{:.10} ± {:.1e}", c.two_basis.limit, c.two_basis.uncertainty),
                     order(c.two_basis.order),
                     format!("{:.10}", c.galerkin.limit),
                     if c.two_basis_agree { "yes" } else { "no" }.to_string(),
@@ -80,7 +78,7 @@ pub fn table(d: &MatchingData) -> String {
 pub fn losses_table(d: &MatchingData) -> String {
     let ks = &d.params.k_over_k1;
     let mut header = vec!["$N$".to_string()];
-    header.extend(ks.iter().map(|k| format!("$k = {}k_1$: entry · forced mean", cell(*k, 2))));
+    header.extend(ks.iter().map(|k| format!("$k = {}k_1$", cell(*k, 2))));
     let header: Vec<&str> = header.iter().map(|s| s.as_str()).collect();
     let mut modes: Vec<usize> = d.losses.iter().map(|l| l.modes).collect();
     modes.sort_unstable();
@@ -104,7 +102,7 @@ pub fn losses_table(d: &MatchingData) -> String {
     fit.extend(ks.iter().map(|&k| {
         d.loss_orders.iter().find(|o| o.k_over_k1 == k).map_or("—".into(), |o| {
             format!(
-                "{:.2} ± {:.2} · {:.2} ± {:.2}",
+                "{:.2}±{:.2} · {:.2}±{:.2}",
                 o.entry_energy.0, o.entry_energy.1, o.forced_mean_energy.0, o.forced_mean_energy.1
             )
         })
@@ -113,16 +111,18 @@ pub fn losses_table(d: &MatchingData) -> String {
     markdown_table(&header, &rows)
 }
 
-/// The periodic orbits: label and the limits of the impact velocity and maximum tip.
+/// The periodic orbits: label, the Galerkin limits of the impact velocity and maximum tip,
+/// whether the element and two-basis limits agree with them, and the coarse truncations
+/// that settle elsewhere.
 pub fn orbits_table(d: &MatchingData) -> String {
     let header = [
         "$k/k_1$",
         "$\\omega/(\\beta_1^-)^2$",
-        "orbit $(m, n)$",
-        "impact velocity: Galerkin · elements · two-basis",
-        "max tip: Galerkin · elements",
+        "orbit",
+        "impact velocity",
+        "max tip",
         "agree",
-        "Galerkin orbit at each $N$",
+        "coarse $N$",
     ];
     let lim = |s: &crate::convergence::Study| format!("{:.8} ± {:.0e}", s.limit, s.uncertainty);
     let rows: Vec<Vec<String>> = d
@@ -131,25 +131,22 @@ pub fn orbits_table(d: &MatchingData) -> String {
         .map(|o| {
             let label = match o.label {
                 Some(l @ OrbitKind::Periodic { .. }) => l.to_string(),
-                Some(OrbitKind::NotPeriodic) => "not periodic (all)".to_string(),
-                None => "label changes with resolution".to_string(),
+                Some(OrbitKind::NotPeriodic) => "not periodic".to_string(),
+                None => "changes with N".to_string(),
             };
-            let impact = o.impact_velocity.as_ref().map_or("—".to_string(), |s| {
-                let tb = s.two_basis.as_ref().map_or("—".to_string(), lim);
-                format!("{} · {} · {}", lim(&s.galerkin), lim(&s.elements), tb)
-            });
-            let top = o.max_tip.as_ref().map_or("—".to_string(), |s| {
-                format!("{} · {}", lim(&s.galerkin), lim(&s.elements))
-            });
+            let impact = o.impact_velocity.as_ref().map_or("—".to_string(), |s| lim(&s.galerkin));
+            let top = o.max_tip.as_ref().map_or("—".to_string(), |s| lim(&s.galerkin));
             let agree = match (&o.impact_velocity, &o.max_tip) {
                 (Some(a), Some(b)) => if a.agree && b.agree { "yes" } else { "no" },
                 _ => "—",
             };
-            let ladder: Vec<String> = o
+            let elsewhere: Vec<String> = o
                 .runs
                 .iter()
                 .filter_map(|(d, r)| match d {
-                    crate::convergence::Discretisation::Galerkin(n) => Some(format!("{n}: {}", r.kind)),
+                    crate::convergence::Discretisation::Galerkin(n) if Some(r.kind) != o.label => {
+                        Some(format!("{n}: {}", r.kind))
+                    }
                     _ => None,
                 })
                 .collect();
@@ -160,7 +157,7 @@ pub fn orbits_table(d: &MatchingData) -> String {
                 impact,
                 top,
                 agree.to_string(),
-                ladder.join(", "),
+                if elsewhere.is_empty() { "—".to_string() } else { elsewhere.iter().take(2).cloned().collect::<Vec<_>>().join("; ") },
             ]
         })
         .collect();
