@@ -126,6 +126,8 @@ fn contact_flow_is_the_constrained_equations_with_coupled_material_damping() {
     direct.sort_by(|x, y| key(x).partial_cmp(&key(y)).unwrap());
     flow.sort_by(|x, y| key(x).partial_cmp(&key(y)).unwrap());
     for (x, y) in direct.iter().zip(&flow) {
+        // two eigensolvers on matrices whose entries reach μ₆ ≈ 6e5: round-off ε·‖A‖/|λ|
+        // is ~1e-11 relative for the lowest mode; 1e-10 allows ten times that
         assert!((x - y).norm() < 1e-10 * x.norm(), "{x} against {y}");
     }
     // the coupling is real: without it the damping would be diagonal γμ_i
@@ -214,10 +216,13 @@ fn converges_to_the_galerkin_limit_at_fixed_k() {
     };
     let tb = convergence::observe(Discretisation::TwoBasis(64), &setup).unwrap();
     let g = convergence::observe(Discretisation::Galerkin(128), &setup).unwrap();
-    // both are within their order-3 truncation errors of the common limit: measured
-    // 3e-7 (two-basis, N = 64) and 4e-8 (Galerkin, N = 128) in the exit tip velocity
-    assert!((tb.exit_tip_velocity - g.exit_tip_velocity).abs() < 1e-6);
-    assert!((tb.contact_duration - g.contact_duration).abs() < 1e-6 * g.contact_duration);
+    // both are within their order-3 truncation errors of the common limit (the book's
+    // Richardson limits at k = 100k₁). Measured differences between the two: exit tip
+    // velocity 7.1e-7 (two-basis N = 64 is 3.1e-7 off the limit, Galerkin N = 128 4.0e-7),
+    // contact duration 9.2e-7 relative, forced tip 4.2e-9. The bounds are about twice
+    // those, far below the 1e-3…1e-2 differences of N = 8 or of a wrong projection.
+    assert!((tb.exit_tip_velocity - g.exit_tip_velocity).abs() < 1.5e-6);
+    assert!((tb.contact_duration - g.contact_duration).abs() < 2e-6 * g.contact_duration);
     assert!((tb.forced_tip - g.forced_tip).abs() < 1e-8);
 }
 

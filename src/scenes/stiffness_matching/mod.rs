@@ -476,7 +476,8 @@ impl Scene for StiffnessMatching {
         let mut r = Rendered::new(render::plot(d)?, render::table(d));
         r.extra_tables.push(("needed", render::needed_table(d)));
         r.extra_tables.push(("two-basis", render_two_basis::table(d)));
-        r.extra_tables.push(("losses", render_two_basis::losses_table(d)));
+        r.extra_tables.push(("losses", render_two_basis::losses_table(d, false)));
+        r.extra_tables.push(("losses-forced", render_two_basis::losses_table(d, true)));
         r.extra_tables.push(("orbits", render_two_basis::orbits_table(d)));
         Ok(r)
     }

@@ -73,9 +73,9 @@ pub fn table(d: &MatchingData) -> String {
     markdown_table(&header, &rows)
 }
 
-/// Energy lost per switch against N (columns: k), one contact's entry and the forced run's
-/// mean, with the fitted order.
-pub fn losses_table(d: &MatchingData) -> String {
+/// Energy lost per switch against N (columns: k), with the fitted slope in N: entering
+/// contact in the one-contact experiment (`forced` false) or the forced run's mean.
+pub fn losses_table(d: &MatchingData, forced: bool) -> String {
     let ks = &d.params.k_over_k1;
     let mut header = vec!["$N$".to_string()];
     header.extend(ks.iter().map(|k| format!("$k = {}k_1$", cell(*k, 2))));
@@ -92,7 +92,7 @@ pub fn losses_table(d: &MatchingData) -> String {
                     .iter()
                     .find(|l| l.modes == n && l.k_over_k1 == k)
                     .map_or(String::new(), |l| {
-                        format!("{:.1e} · {:.1e}", l.entry_energy, l.forced_mean_energy)
+                        format!("{:.1e}", if forced { l.forced_mean_energy } else { l.entry_energy })
                     })
             }));
             r
@@ -101,10 +101,8 @@ pub fn losses_table(d: &MatchingData) -> String {
     let mut fit = vec!["slope in $N$".to_string()];
     fit.extend(ks.iter().map(|&k| {
         d.loss_orders.iter().find(|o| o.k_over_k1 == k).map_or("—".into(), |o| {
-            format!(
-                "{:.2}±{:.2} · {:.2}±{:.2}",
-                o.entry_energy.0, o.entry_energy.1, o.forced_mean_energy.0, o.forced_mean_energy.1
-            )
+            let (p, e) = if forced { o.forced_mean_energy } else { o.entry_energy };
+            format!("{p:.2} ± {e:.0e}")
         })
     }));
     rows.push(fit);
@@ -117,7 +115,7 @@ pub fn losses_table(d: &MatchingData) -> String {
 pub fn orbits_table(d: &MatchingData) -> String {
     let header = [
         "$k/k_1$",
-        "$\\omega/(\\beta_1^-)^2$",
+        "$\\omega$",
         "orbit",
         "impact velocity",
         "max tip",
@@ -157,7 +155,7 @@ pub fn orbits_table(d: &MatchingData) -> String {
                 impact,
                 top,
                 agree.to_string(),
-                if elsewhere.is_empty() { "—".to_string() } else { elsewhere.iter().take(2).cloned().collect::<Vec<_>>().join("; ") },
+                elsewhere.first().cloned().unwrap_or_else(|| "—".to_string()),
             ]
         })
         .collect();

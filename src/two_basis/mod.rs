@@ -41,12 +41,13 @@
 //! it then goes on in its new region if it moves back in, and switches straight back if it
 //! does not ([`Simulator::flight`]).
 
+mod runs;
+pub use runs::{forced_from_rest, one_contact, settle};
+
 use crate::continuum::{self, ModeShape};
-use crate::convergence::PeriodicObservables;
 use crate::error::{self, Error, ParameterError};
 use crate::galerkin::{FreeModes, GalerkinModel, GalerkinParams, Region, SpatialProfile};
 use crate::numerics::{brent, Quadrature};
-use crate::orbit::{self, OrbitKind};
 use crate::sim::{Clock, Simulator, Stats};
 use nalgebra::{DMatrix, DVector};
 use serde::Serialize;
@@ -115,8 +116,12 @@ pub struct TwoBasisModel {
     contact: Simulator,
     /// P (N × N), P_ij = ∫ψ_iφ_j.
     projection: DMatrix<f64>,
+    /// Pᵀ (every exit from contact applies it).
+    projection_t: DMatrix<f64>,
     /// Q: K_b = Q diag(κ) Qᵀ.
     ritz: DMatrix<f64>,
+    /// Qᵀ (every contact flight starts with it).
+    ritz_t: DMatrix<f64>,
     /// μ_i = (β_i⁺)⁴.
     mu: Vec<f64>,
     /// ψ_i(1).
@@ -154,7 +159,9 @@ impl TwoBasisModel {
         Ok(Self {
             free: Simulator::new(free_model)?,
             contact: Simulator::new(contact_model)?,
+            projection_t: projection.transpose(),
             projection,
+            ritz_t: ritz.transpose(),
             ritz,
             mu,
             psi_tip,
@@ -224,7 +231,7 @@ impl TwoBasisModel {
 
     /// Projects a constrained-basis state [q; q̇] onto the free basis: [Pᵀq; Pᵀq̇].
     pub fn to_free(&self, x: &DVector<f64>) -> DVector<f64> {
-        self.map(&self.projection.transpose(), x)
+        self.map(&self.projection_t, x)
     }
 
     fn map(&self, m: &DMatrix<f64>, x: &DVector<f64>) -> DVector<f64> {
@@ -256,8 +263,10 @@ impl TwoBasisModel {
         match s.region {
             Region::Free => self.free.stored_energy(&s.x),
             Region::Contact => {
+                // qᵀK_b q = Σ μ_i q_i² − (k/4)(ψ(1)ᵀq)², without forming K_b
                 let q = s.x.rows(0, n);
-                let bending = q.dot(&(self.bending_stiffness() * q));
+                let diagonal: f64 = q.iter().zip(&self.mu).map(|(qi, mi)| mi * qi * qi).sum();
+                let bending = diagonal - p.stop_stiffness / 4.0 * d * d;
                 kinetic + 0.5 * bending + p.stop_stiffness / 8.0 * (d - p.gap).powi(2)
             }
         }
@@ -352,7 +361,7 @@ impl TwoBasisModel {
             };
             let (sim, y) = match state.region {
                 Region::Free => (&self.free, state.x.clone()),
-                Region::Contact => (&self.contact, self.map(&self.ritz.transpose(), &state.x)),
+                Region::Contact => (&self.contact, self.map(&self.ritz_t, &state.x)),
             };
             let f = sim.flight(state.region, &y, &clock, horizon, &mut stats);
             state.x = match state.region {
@@ -486,118 +495,4 @@ fn downdate_eigen(
         q.set_column(i, &(&u / u.norm()));
     }
     Ok((kappa, q))
-}
-
-/// The one-contact experiment of [`crate::convergence`] on the two-basis model: the beam
-/// at rest, undeflected, with the velocity profile ½φ₁ (tip velocity 1 into the stop at
-/// d₀ = 0), until the tip first leaves the stop. Returns the contact duration, the exit tip
-/// velocity (in the constrained basis, before the switch), the state after the switch (free
-/// basis) and the switches (entry at t = 0 and the exit).
-pub fn one_contact(model: &TwoBasisModel) -> Result<(f64, f64, DVector<f64>, Vec<Switch>), Error> {
-    let n = model.modes();
-    let mut x = DVector::zeros(2 * n);
-    x[n] = 0.5;
-    let (state, entry) = model.start(&x, 0.0);
-    let mut switches: Vec<Switch> = entry.into_iter().collect();
-    // unforced: one bookkeeping "period" is one time unit, far longer than the contact
-    let period = model.period();
-    let exits_before = usize::from(state.region == Region::Free);
-    let run = model.run_switches(
-        state,
-        Clock::at_cycle(period, 0),
-        Clock::at_cycle(period, 4),
-        1 + exits_before,
-    )?;
-    switches.extend(run.switches);
-    match switches.iter().find(|s| !s.entering) {
-        Some(exit) if run.state.region == Region::Free => {
-            Ok((exit.time, exit.tip_velocity, run.state.x, switches))
-        }
-        _ => Err(Error::Unsupported(
-            "the tip did not leave the stop within four time units".into(),
-        )),
-    }
-}
-
-/// Tip displacement and velocity after `periods` forcing periods from rest (x⁺(0) = 0 in
-/// the region the start rule gives), and the switches on the way.
-pub fn forced_from_rest(
-    model: &TwoBasisModel,
-    periods: u64,
-) -> Result<(f64, f64, Vec<Switch>), Error> {
-    let n = model.modes();
-    let (state, first) = model.start(&DVector::zeros(2 * n), 0.0);
-    let period = model.period();
-    let run = model.run_until(
-        state,
-        Clock::at_cycle(period, 0),
-        Clock::at_cycle(period, periods as i64),
-    )?;
-    let (d, v) = model.tip(&run.state);
-    let mut switches: Vec<Switch> = first.into_iter().collect();
-    switches.extend(run.switches);
-    Ok((d, v, switches))
-}
-
-/// The forced run from rest continued until its stroboscopic samples repeat (§5.2's test,
-/// relative to the state, as in [`crate::orbit`]; samples in different bases never match):
-/// `chunk` periods at a time, a `window` of samples, at most `max` periods in all.
-pub fn settle(
-    model: &TwoBasisModel,
-    chunk: u64,
-    window: u64,
-    max: u64,
-) -> Result<PeriodicObservables, Error> {
-    let n = model.modes();
-    let period = model.period();
-    let (mut state, _) = model.start(&DVector::zeros(2 * n), 0.0);
-    let mut cycle = 0_i64;
-    let clock = |c: i64| Clock::at_cycle(period, c);
-    while (cycle as u64) + window <= max {
-        state = model
-            .run_until(state, clock(cycle), clock(cycle + chunk as i64))?
-            .state;
-        cycle += chunk as i64;
-        // the window: one period at a time, sampling the state at each boundary
-        let mut samples = vec![state.clone()];
-        let mut switches = Vec::new();
-        for _ in 0..window {
-            let run = model.run_until(state, clock(cycle), clock(cycle + 1))?;
-            switches.push(run.switches);
-            state = run.state;
-            samples.push(state.clone());
-            cycle += 1;
-        }
-        let last = &samples[samples.len() - 1];
-        let found = (1..=orbit::MAX_PERIOD.min(window as usize)).find(|&m| {
-            let earlier = &samples[samples.len() - 1 - m];
-            earlier.region == last.region
-                && orbit::relative_residual(&earlier.x, &last.x) < orbit::PERIODIC_TOLERANCE
-        });
-        if let Some(m) = found {
-            let entries: Vec<&Switch> = switches[switches.len() - m..]
-                .iter()
-                .flatten()
-                .filter(|s| s.entering)
-                .collect();
-            return Ok(PeriodicObservables {
-                kind: OrbitKind::Periodic {
-                    m: m as u64,
-                    n: entries.len() as u64,
-                },
-                impact_velocity: entries
-                    .iter()
-                    .map(|s| s.tip_velocity)
-                    .fold(f64::NAN, f64::max),
-                max_tip: None,
-                transient: cycle as u64 - window,
-            });
-        }
-    }
-    Ok(PeriodicObservables {
-        kind: OrbitKind::NotPeriodic,
-        impact_velocity: f64::NAN,
-        max_tip: None,
-        transient: cycle as u64,
-    })
 }
