@@ -1,11 +1,14 @@
-//! Issue target: one converged N = 10 orbit with its multipliers at Figure 4's parameters in
-//! ≤ 0.5 ms from a start within the basin (single thread).
+//! Issue targets: one converged N = 10 orbit with its multipliers at Figure 4's parameters
+//! in ≤ 0.5 ms from a start within the basin (single thread); the four continued Figure 5
+//! branch sets (N = 1, 2, 3, 10, seeded from the brute-force diagram) in ≤ 5 s on 2 cores.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use impacting_cantilever::problems;
+use impacting_cantilever::scenes::fig5::{self, branches, Fig5Params};
 use impacting_cantilever::shooting;
 use impacting_cantilever::sim::Simulator;
 use nalgebra::DVector;
+use rayon::prelude::*;
 use std::hint::black_box;
 
 fn orbit(c: &mut Criterion) {
@@ -17,5 +20,22 @@ fn orbit(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, orbit);
+fn fig5_branches(c: &mut Criterion) {
+    // the brute-force diagram is the seeds' source, computed once outside the timing
+    let p = Fig5Params::book();
+    let d = fig5::compute(&p, &|| {}).unwrap();
+    let mut g = c.benchmark_group("continuation");
+    g.sample_size(10);
+    g.bench_function("Fig 5 branch sets, N = 1, 2, 3, 10 (all threads)", |b| {
+        b.iter(|| {
+            p.modes
+                .par_iter()
+                .map(|&n| branches::branch_set(&p, &d, n).unwrap())
+                .collect::<Vec<_>>()
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, orbit, fig5_branches);
 criterion_main!(benches);

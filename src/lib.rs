@@ -57,6 +57,7 @@
 
 pub mod asymptotics;
 pub mod citation;
+pub mod continuation;
 pub mod continuum;
 pub mod convergence;
 pub mod dopri5;

@@ -395,3 +395,42 @@ fn orbit_returns_the_figure_4_orbit_with_its_multipliers() {
         "{err}"
     );
 }
+
+#[test]
+fn continue_traces_the_n3_branch_through_its_grazings() {
+    let fig4 = [
+        "continue",
+        "--modes",
+        "3",
+        "--stop-stiffness",
+        "100",
+        "--zeta1",
+        "0.01",
+        "--omega",
+        "2",
+        "--periods",
+        "1000",
+        "--parameter",
+        "stop-stiffness",
+    ];
+    let (code, out, err) = cantilever(&[&fig4[..], &["--to", "300", "--one-way"]].concat());
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(out.matches("grazing").count(), 2, "{out}");
+    let (code, out, err) = cantilever(&[&fig4[..], &["--to", "300", "--json"]].concat());
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let branches = v["branches"].as_array().unwrap();
+    // towards 300 first, then down to 100²/300
+    assert!(branches[0]["points"].as_array().unwrap().len() > 10);
+    let last = |b: &serde_json::Value| {
+        let p = b["points"].as_array().unwrap();
+        p[p.len() - 1]["parameter"].as_f64().unwrap()
+    };
+    assert!(last(&branches[0]) > 300.0 && last(&branches[1]) < 100.0 / 3.0 + 1.0);
+    for bad in [vec!["--to", "-1"], vec!["--to", "300", "--max-step", "1"]] {
+        let (code, _, err) = cantilever(&[&fig4[..], &bad[..]].concat());
+        let bad = [bad[bad.len() - 2]];
+        assert_eq!(code, 2, "{bad:?}");
+        assert!(err.contains(bad[0]) && err.lines().count() == 1, "{err}");
+    }
+}

@@ -4,6 +4,7 @@
 //! allowed.
 
 mod cite;
+mod continue_cmd;
 mod orbit;
 mod progress;
 mod simulate;
@@ -124,6 +125,23 @@ enum Command {
     Orbit {
         #[command(flatten)]
         args: orbit::Args,
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+    },
+    /// A branch of periodic orbits continued in k or ω (pseudo-arclength on the shooting
+    /// problem), with its folds, period doublings (followed to the doubled branch),
+    /// Neimark–Sacker points and grazings. The start orbit is found as by `orbit`; the
+    /// branch goes from it to --to and, unless --one-way, as far the other way.
+    ///
+    /// Output fields (--json): parameter, start, modes, branches: each with period_m,
+    /// points (parameter, state, impacts_n, multipliers [re, im], stable, residual, shape:
+    /// impact_velocities, grazing_distance, max_tip), bifurcations (kind, parameter,
+    /// between: the two points it lies between, impacts and stable before/after), end
+    /// (why the branch stops) and parent (the branch it doubled from).
+    Continue {
+        #[command(flatten)]
+        args: continue_cmd::Args,
         /// Print JSON.
         #[arg(long)]
         json: bool,
@@ -306,6 +324,18 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 );
             } else {
                 emit(&orbit::to_text(&report));
+            }
+            Ok(())
+        }
+        Command::Continue { args, json } => {
+            let report = continue_cmd::run(&args)?;
+            if json {
+                outln!(
+                    "{}",
+                    serde_json::to_string_pretty(&report).unwrap_or_default()
+                );
+            } else {
+                emit(&continue_cmd::to_text(&report));
             }
             Ok(())
         }

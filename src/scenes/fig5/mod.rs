@@ -9,6 +9,7 @@
 //! Sweep points run in parallel (rayon); each point's random initial conditions come from
 //! its own seeded stream, so the diagram does not depend on the thread count.
 
+pub mod branches;
 mod claims;
 pub mod render;
 
@@ -46,6 +47,11 @@ pub struct Fig5Params {
     pub omega_over_w1: f64,
     /// Seed of the initial conditions.
     pub seed: u64,
+    /// Largest continuation step of the overlaid branches (in ln k, with the orbit scaled
+    /// by its size).
+    pub branch_step: f64,
+    /// Brute-force attractors not yet on a branch that seed one, at most.
+    pub branch_seeds: usize,
 }
 
 impl Fig5Params {
@@ -61,6 +67,8 @@ impl Fig5Params {
             zeta1: 0.01,
             omega_over_w1: 2.0,
             seed: 2013,
+            branch_step: 0.02,
+            branch_seeds: 16,
         }
     }
 
@@ -72,6 +80,8 @@ impl Fig5Params {
             points: 10,
             starts: 2,
             recorded: 40,
+            branch_step: 0.05,
+            branch_seeds: 2,
             ..Self::book()
         }
     }
@@ -173,6 +183,8 @@ pub struct Fig5Data {
     /// every N and k: the forcing has mode 1's shape, and mode 1 does not feel k in free
     /// flight).
     pub free_amplitude: (f64, f64),
+    /// The continued branches, one set per N.
+    pub branches: Vec<branches::BranchSet>,
 }
 
 /// The N = 1 model's k → ∞ limit: the impact oscillator with Newton's law, r = 1 (the
@@ -213,6 +225,45 @@ fn rigid_limit(p: &Fig5Params, compliant_at_largest_k: f64) -> Result<RigidLimit
     })
 }
 
+/// The state a start of the diagram ends in after the transient (the seed of a branch).
+pub fn point_state(
+    p: &Fig5Params,
+    modes: usize,
+    k_index: usize,
+    k_over_k1: f64,
+    start: usize,
+) -> Result<DVector<f64>, Error> {
+    let m = Forced {
+        k_over_k1,
+        zeta1: p.zeta1,
+        omega_over_w1: p.omega_over_w1,
+        ..problems::figure4(modes)
+    }
+    .model()?;
+    let (amp, _) = m.free_tip_amplitude();
+    let omega = m.omega();
+    let sim = Simulator::new(m)?;
+    let x0 = start_state(p, modes, k_index, start, amp, omega);
+    Ok(sim.run(&x0, p.transient, &mut ())?.state)
+}
+
+/// Start `s` at grid point `k_index`: rest, or a seeded random state.
+fn start_state(
+    p: &Fig5Params,
+    modes: usize,
+    k_index: usize,
+    s: usize,
+    amp: f64,
+    omega: f64,
+) -> DVector<f64> {
+    if s == 0 {
+        DVector::zeros(2 * modes)
+    } else {
+        let mut rng = SplitMix64::for_point(p.seed, modes as u64, k_index as u64, s as u64);
+        orbit::random_state(&mut rng, modes, 4.0 * amp, omega)
+    }
+}
+
 fn point(
     p: &Fig5Params,
     modes: usize,
@@ -231,12 +282,7 @@ fn point(
     let sim = Simulator::new(m)?;
     (0..p.starts)
         .map(|s| {
-            let x0 = if s == 0 {
-                DVector::zeros(2 * modes)
-            } else {
-                let mut rng = SplitMix64::for_point(p.seed, modes as u64, k_index as u64, s as u64);
-                orbit::random_state(&mut rng, modes, 4.0 * amp, omega)
-            };
+            let x0 = start_state(p, modes, k_index, s, amp, omega);
             let o = orbit::settle(&sim, &x0, p.transient, p.recorded, 0)?;
             let end = o.window_start + p.recorded as i64;
             Ok(StartResult {
@@ -306,7 +352,7 @@ pub fn compute(p: &Fig5Params, progress: &(dyn Fn() + Sync)) -> Result<Fig5Data,
     }
     .model()?
     .free_tip_amplitude();
-    Ok(Fig5Data {
+    let mut data = Fig5Data {
         params: p.clone(),
         k_over_k1: grid,
         diagrams,
@@ -314,7 +360,15 @@ pub fn compute(p: &Fig5Params, progress: &(dyn Fn() + Sync)) -> Result<Fig5Data,
         claims,
         rigid_limit,
         free_amplitude: unit,
-    })
+        branches: Vec::new(),
+    };
+    // one truncation per task: each set is traced in a fixed order
+    data.branches = p
+        .modes
+        .par_iter()
+        .map(|&n| branches::branch_set(p, &data, n))
+        .collect::<Result<_, _>>()?;
+    Ok(data)
 }
 
 
@@ -431,6 +485,7 @@ impl Scene for Fig5 {
             "k values where all four Fig 4 orbits are attractors",
             c.paper_figure4_set_reachable_at.len() as i64,
         );
+        branches::key_numbers(&mut k, d);
         if let Some(r) = &d.rigid_limit {
             k.cited(
                 "N=1 rigid-limit impact velocity",

@@ -15,9 +15,14 @@ pub fn plot(d: &Fig5Data) -> Result<String, RenderError> {
     let mut svg = String::new();
     {
         let root =
-            SVGBackend::with_string(&mut svg, (WIDTH, 300 * rows as u32)).into_drawing_area();
+            SVGBackend::with_string(&mut svg, (WIDTH, 300 * rows as u32 + LEGEND_HEIGHT))
+                .into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
-        let panels = root.split_evenly((rows, 1));
+        let (top, strip) = root.split_vertically(300 * rows as u32);
+        let panels = top.split_evenly((rows, 1));
+        if !d.branches.is_empty() {
+            branch_legend(&strip, d)?;
+        }
         let (lo, hi) = d.params.k_over_k1_range;
         let k2 = crate::continuum::modal_stiffness(2).unwrap_or(f64::NAN)
             / crate::galerkin::first_modal_stiffness();
@@ -67,6 +72,9 @@ pub fn plot(d: &Fig5Data) -> Result<String, RenderError> {
                         .map(|pt| Circle::new(pt, 2, RGBColor(0, 60, 140).mix(0.6).filled())),
                 )
                 .map_err(drawing)?;
+            if let Some(set) = d.branches.iter().find(|b| b.modes == g.modes) {
+                draw_branches(&mut chart, set, (lo, hi), vmax)?;
+            }
             chart
                 .draw_series(DashedLineSeries::new(
                     vec![(k2, 0.0), (k2, vmax)],
@@ -93,6 +101,145 @@ pub fn plot(d: &Fig5Data) -> Result<String, RenderError> {
         root.present().map_err(drawing)?;
     }
     Ok(svg)
+}
+
+use crate::continuation::BifurcationKind as K;
+
+const STABLE: ShapeStyle = ShapeStyle {
+    color: RGBAColor(0, 0, 0, 1.0),
+    filled: false,
+    stroke_width: 2,
+};
+const UNSTABLE: ShapeStyle = ShapeStyle {
+    color: RGBAColor(200, 30, 30, 1.0),
+    filled: false,
+    stroke_width: 2,
+};
+const MARKERS: [(K, &str, RGBColor); 5] = [
+    (K::PeriodDoubling, "period doubling", RGBColor(230, 120, 0)),
+    (K::Fold, "fold", RGBColor(120, 0, 160)),
+    (K::NeimarkSacker, "Neimark–Sacker", RGBColor(200, 0, 120)),
+    (K::Grazing, "grazing", RGBColor(0, 140, 60)),
+    (K::BranchPoint, "branch point", RGBColor(0, 0, 0)),
+];
+
+type Chart<'a, 'b> = ChartContext<
+    'a,
+    SVGBackend<'b>,
+    Cartesian2d<plotters::coord::combinators::LogCoord<f64>, plotters::coord::types::RangedCoordf64>,
+>;
+
+/// The continued branches over the brute-force points: stable solid, unstable dashed, one
+/// line per impact of the period (largest first); bifurcations marked.
+fn draw_branches(
+    chart: &mut Chart,
+    set: &super::branches::BranchSet,
+    (lo, hi): (f64, f64),
+    vmax: f64,
+) -> Result<(), RenderError> {
+    let inside = |k: f64| k >= lo && k <= hi;
+    let (mut stable_runs, mut unstable_runs) = (Vec::new(), Vec::new());
+    for b in &set.branches {
+        let pts: Vec<_> = b.points.iter().filter(|q| inside(q.k_over_k1)).collect();
+        for w in pts.windows(2) {
+            let (a, c) = (w[0], w[1]);
+            if a.impacts_n != c.impacts_n || a.stable != c.stable {
+                continue;
+            }
+            for j in 0..a.impacts_n {
+                let seg = vec![
+                    (a.k_over_k1, a.impact_velocities[j].min(vmax)),
+                    (c.k_over_k1, c.impact_velocities[j].min(vmax)),
+                ];
+                if a.stable {
+                    stable_runs.push(seg);
+                } else {
+                    unstable_runs.push(seg);
+                }
+            }
+        }
+    }
+    for seg in stable_runs {
+        chart
+            .draw_series(LineSeries::new(seg, STABLE))
+            .map_err(drawing)?;
+    }
+    for seg in unstable_runs {
+        chart
+            .draw_series(DashedLineSeries::new(seg, 4, 3, UNSTABLE))
+            .map_err(drawing)?;
+    }
+    let marks: Vec<(K, f64, f64)> = set
+        .branches
+        .iter()
+        .flat_map(|b| {
+            b.bifurcations.iter().filter(|f| inside(f.parameter)).map(|f| {
+                let v = b.points[f.index]
+                    .impact_velocities
+                    .first()
+                    .copied()
+                    .unwrap_or(0.0);
+                (f.kind, f.parameter, v.min(vmax))
+            })
+        })
+        .collect();
+    for (kind, _, color) in MARKERS {
+        let style = color.stroke_width(2);
+        chart
+            .draw_series(
+                marks
+                    .iter()
+                    .filter(|m| m.0 == kind)
+                    .map(|m| TriangleMarker::new((m.1, m.2), 6, style)),
+            )
+            .map_err(drawing)?;
+    }
+    Ok(())
+}
+
+/// Height of the strip under the panels that holds the branches' legend.
+const LEGEND_HEIGHT: u32 = 64;
+
+/// The legend of the branches, in a strip under the panels (inside a panel it would hide
+/// points): line styles and every bifurcation kind found in any panel.
+fn branch_legend(
+    strip: &DrawingArea<SVGBackend, plotters::coord::Shift>,
+    d: &Fig5Data,
+) -> Result<(), RenderError> {
+    let font = LABEL_FONT.into_font();
+    let (mut x, y) = (20i32, 24i32);
+    let entry = |x: &mut i32, label: &str| -> Result<(), RenderError> {
+        strip
+            .draw(&Text::new(label.to_string(), (*x + 34, y - 8), font.clone()))
+            .map_err(drawing)?;
+        *x += 44 + 8 * label.chars().count() as i32;
+        Ok(())
+    };
+    strip
+        .draw(&PathElement::new(vec![(x, y), (x + 26, y)], STABLE))
+        .map_err(drawing)?;
+    entry(&mut x, "continued, stable")?;
+    for i in 0..3 {
+        let x0 = x + 9 * i;
+        strip
+            .draw(&PathElement::new(vec![(x0, y), (x0 + 5, y)], UNSTABLE))
+            .map_err(drawing)?;
+    }
+    entry(&mut x, "continued, unstable")?;
+    for (kind, name, color) in MARKERS {
+        let found = d
+            .branches
+            .iter()
+            .flat_map(|s| &s.branches)
+            .any(|b| b.bifurcations.iter().any(|f| f.kind == kind));
+        if found {
+            strip
+                .draw(&TriangleMarker::new((x + 13, y), 6, color.stroke_width(2)))
+                .map_err(drawing)?;
+            entry(&mut x, name)?;
+        }
+    }
+    Ok(())
 }
 
 /// Where the set of orbits reached changes along k, for each N.

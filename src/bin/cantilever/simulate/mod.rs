@@ -247,8 +247,8 @@ fn forcing(args: &Args) -> Result<Forcing, ParameterError> {
     Ok(Forcing { omega, profile })
 }
 
-/// The model, its law and its initial state, from the validated arguments.
-pub fn setup(args: &Args) -> Result<Setup, ParameterError> {
+/// The model the options describe (validated), without the law or the start state.
+pub fn model(args: &Args) -> Result<GalerkinModel, ParameterError> {
     validate(args)?;
     let mut params = GalerkinParams::new(args.modes, args.stop_stiffness * first_modal_stiffness())
         .with_gap(args.gap)
@@ -258,7 +258,12 @@ pub fn setup(args: &Args) -> Result<Setup, ParameterError> {
         DampingReading::Fig9 => galerkin::material_damping_from_zeta1(args.zeta1),
         DampingReading::Fig4Literal => 2.0 * args.zeta1 * first_frequency(),
     };
-    let model = GalerkinModel::new(params)?;
+    GalerkinModel::new(params)
+}
+
+/// The model, restitution law and start state the options describe.
+pub fn setup(args: &Args) -> Result<Setup, ParameterError> {
+    let model = model(args)?;
     let n = args.modes;
     let law = match args.model {
         ModelKind::Compliant => None,

@@ -1,0 +1,153 @@
+//! `cantilever continue`: a branch of periodic orbits of the compliant model continued in
+//! k or ω, with its bifurcations ([`impacting_cantilever::continuation`]).
+
+use crate::orbit;
+use crate::simulate;
+use impacting_cantilever::continuation::{self, Branch, Family, Parameter, Settings};
+use impacting_cantilever::error::{Error, ParameterError};
+use nalgebra::DVector;
+
+/// The continuation parameter, as typed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum ParameterArg {
+    /// k/k₁ (--stop-stiffness).
+    StopStiffness,
+    /// ω/(β₁⁻)² (--omega).
+    Omega,
+}
+
+/// The command's inputs: the start orbit of `orbit`, the parameter and where to go.
+#[derive(Debug, Clone, clap::Args)]
+pub struct Args {
+    #[command(flatten)]
+    pub orbit: orbit::Args,
+    /// The parameter continued; the branch starts at its value in the model options.
+    #[arg(long, value_enum)]
+    pub parameter: ParameterArg,
+    /// Where to continue to (a value of the parameter, > 0); the branch is traced from
+    /// the start to this value and, unless --one-way, back past the start to
+    /// start²/to (the same factor the other way).
+    #[arg(long, allow_hyphen_values = true)]
+    pub to: f64,
+    /// Only towards --to.
+    #[arg(long)]
+    pub one_way: bool,
+    /// Largest step in ln p (also the spacing of the points), 1e-4 to 0.2.
+    #[arg(long, allow_hyphen_values = true, default_value_t = 0.02)]
+    pub max_step: f64,
+    /// Follow period doublings up to this period (1 = no branch switching), 1 to 64.
+    #[arg(long, default_value_t = 8)]
+    pub doubling_up_to: u64,
+}
+
+/// The branches and what they started from.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct Report {
+    /// "k/k₁" or "ω/(β₁⁻)²".
+    pub parameter: &'static str,
+    /// The starting orbit's parameter value.
+    pub start: f64,
+    /// N.
+    pub modes: usize,
+    /// The branches (0: towards --to; then the other way; then period-doubled ones).
+    pub branches: Vec<Branch>,
+}
+
+/// Traces the branch.
+pub fn run(args: &Args) -> Result<Report, Error> {
+    let a = &args.orbit.model;
+    let (parameter, p0) = match args.parameter {
+        ParameterArg::StopStiffness => (Parameter::StopStiffness, a.stop_stiffness),
+        ParameterArg::Omega => (Parameter::Frequency, a.omega),
+    };
+    if !(args.to.is_finite() && args.to > 0.0 && args.to != p0) {
+        return Err(ParameterError::new(
+            "--to",
+            args.to,
+            "a finite value > 0 other than the start value",
+        )
+        .into());
+    }
+    if !(1e-4..=0.2).contains(&args.max_step) {
+        return Err(ParameterError::new("--max-step", args.max_step, "1e-4 to 0.2").into());
+    }
+    if !(1..=64).contains(&args.doubling_up_to) {
+        return Err(ParameterError::new("--doubling-up-to", args.doubling_up_to, "1 to 64").into());
+    }
+    // the start orbit, found as `cantilever orbit` finds it (validates the model options)
+    let start = orbit::run(&args.orbit)?;
+    let base = a.clone();
+    let family = Family::new(parameter, move |p| {
+        let mut m = base.clone();
+        match parameter {
+            Parameter::StopStiffness => m.stop_stiffness = p,
+            Parameter::Frequency => m.omega = p,
+        }
+        Ok(simulate::model(&m)?)
+    });
+    let other = if args.one_way { p0 } else { p0 * p0 / args.to };
+    let settings = Settings {
+        max_step: args.max_step,
+        initial_step: args.max_step.min(0.01),
+        max_period: args.doubling_up_to,
+        ..Settings::new((args.to.min(other), args.to.max(other)))
+    };
+    let x = DVector::from_vec(start.orbit.state.clone());
+    let m = start.orbit.period_m;
+    let mut branches = if args.one_way {
+        let dir = (args.to - p0).signum();
+        vec![continuation::continue_branch(
+            &family, &x, p0, m, dir, &settings,
+        )?]
+    } else {
+        continuation::trace(&family, &x, p0, m, &settings)?
+    };
+    // branch 0 runs up; put the one towards --to first
+    if !args.one_way && args.to < p0 && branches.len() > 1 {
+        branches.swap(0, 1);
+    }
+    Ok(Report {
+        parameter: parameter.symbol(),
+        start: p0,
+        modes: a.modes,
+        branches,
+    })
+}
+
+/// Plain-text summary: each branch's extent and its bifurcations.
+pub fn to_text(r: &Report) -> String {
+    let mut s = format!(
+        "N = {}, continuation in {} from {}\n",
+        r.modes, r.parameter, r.start
+    );
+    for (i, b) in r.branches.iter().enumerate() {
+        let (first, last) = (&b.points[0], &b.points[b.points.len() - 1]);
+        s.push_str(&format!(
+            "branch {i}: period {}, {} points, {} = {:.6} → {:.6} ({}){}\n",
+            b.period_m,
+            b.points.len(),
+            r.parameter,
+            first.parameter,
+            last.parameter,
+            b.end,
+            b.parent.map_or(String::new(), |p| format!(
+                ", born at a period doubling of branch {p}"
+            ))
+        ));
+        for f in &b.bifurcations {
+            s.push_str(&format!(
+                "  {:<16} at {} = {:.6} (between {:.6} and {:.6}); contacts {} → {}, {} → {}\n",
+                f.kind.to_string(),
+                r.parameter,
+                f.parameter,
+                f.between.0,
+                f.between.1,
+                f.impacts.0,
+                f.impacts.1,
+                if f.stable.0 { "stable" } else { "unstable" },
+                if f.stable.1 { "stable" } else { "unstable" },
+            ));
+        }
+    }
+    s
+}
