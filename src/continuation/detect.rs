@@ -50,7 +50,10 @@ pub struct Bifurcation {
     pub stable: (bool, bool),
 }
 
-/// Multipliers on the real axis: |Im μ| below this times max(1, |μ|).
+/// Multipliers on the real axis: |Im μ| below this times max(1, |μ|). The eigensolver
+/// returns real eigenvalues of the real monodromy with Im = 0 or round-off (~1e-16‖M‖), and
+/// a genuine complex pair near the real axis is about to become real anyway (a collision,
+/// not a crossing of the unit circle), so the threshold only needs to sit between the two.
 const REAL: f64 = 1e-9;
 
 /// The largest modulus among real negative, real positive and complex multipliers (0 when

@@ -6,7 +6,7 @@
 //! **The unknowns** are the orbit's state x at the start of a forcing period and u = ln p
 //! (p = k/k₁ or ω/(β₁⁻)²: one logarithmic scale serves three decades of k). The state is
 //! scaled by the free response's size (displacements and velocities separately), so an
-//! arclength step h moves the orbit by about h of its size or p by a factor e^h.
+//! arclength step h moves the orbit by about h of that size or p by a factor e^h.
 //!
 //! **Predictor–corrector (Keller).** The tangent t spans the null space of
 //! [DₓG | ∂ᵤG], G = P^m − I, where DₓG = M − I uses the exact monodromy M and ∂ᵤG is a
@@ -366,6 +366,8 @@ pub fn continue_branch(
     let start = shooting::shoot(&sim0, x0, m)?;
     let x = DVector::from_vec(start.state.clone());
     // the orbit's least period: Newton may have converged to an orbit of a divisor of m
+    // (distinct points of a period-m orbit differ by O(1) of its size; the orbit itself is
+    // converged to 1e-12, so 1e-6 separates the two cases with room on both sides)
     for q in (1..m).filter(|q| m.is_multiple_of(*q)) {
         let px = sim0.run(&x, q, &mut ())?.state;
         if relative_residual(&px, &x) < 1e-6 {

@@ -13,7 +13,6 @@ use super::{point_state, Fig5Data, Fig5Params};
 use crate::continuation::{self, Bifurcation, Branch, Family, Parameter, Settings};
 use crate::error::Error;
 use crate::orbit::{self, OrbitKind};
-use crate::problems::{self, Forced};
 use crate::report::{KeyNumbers, Uncertainty};
 use nalgebra::DVector;
 use serde::Serialize;
@@ -58,14 +57,8 @@ pub struct BranchSet {
 }
 
 fn family(p: &Fig5Params, modes: usize) -> Family<'static> {
-    Family::forced(
-        Forced {
-            zeta1: p.zeta1,
-            omega_over_w1: p.omega_over_w1,
-            ..problems::figure4(modes)
-        },
-        Parameter::StopStiffness,
-    )
+    // the base value of k is replaced by the family's parameter
+    Family::forced(super::forced(p, modes, 1.0), Parameter::StopStiffness)
 }
 
 fn settings(p: &Fig5Params) -> Settings {

@@ -204,13 +204,7 @@ pub struct RigidLimit {
 /// The N = 1 rigid limit at the sweep's ζ₁ and ω (see [`RigidLimit`]).
 fn rigid_limit(p: &Fig5Params, compliant_at_largest_k: f64) -> Result<RigidLimit, Error> {
     use crate::rigid::RigidImpact;
-    let m = Forced {
-        k_over_k1: 1.0,
-        zeta1: p.zeta1,
-        omega_over_w1: p.omega_over_w1,
-        ..problems::figure4(1)
-    }
-    .model()?;
+    let m = forced(p, 1, 1.0).model()?;
     let (_, vamp) = m.free_tip_amplitude();
     let rigid = RigidImpact::new(
         Simulator::new(m)?,
@@ -225,6 +219,16 @@ fn rigid_limit(p: &Fig5Params, compliant_at_largest_k: f64) -> Result<RigidLimit
     })
 }
 
+/// The diagram's model: Figure 4's parameters at N modes and stop stiffness k/k₁.
+pub fn forced(p: &Fig5Params, modes: usize, k_over_k1: f64) -> Forced {
+    Forced {
+        k_over_k1,
+        zeta1: p.zeta1,
+        omega_over_w1: p.omega_over_w1,
+        ..problems::figure4(modes)
+    }
+}
+
 /// The state a start of the diagram ends in after the transient (the seed of a branch).
 pub fn point_state(
     p: &Fig5Params,
@@ -233,13 +237,7 @@ pub fn point_state(
     k_over_k1: f64,
     start: usize,
 ) -> Result<DVector<f64>, Error> {
-    let m = Forced {
-        k_over_k1,
-        zeta1: p.zeta1,
-        omega_over_w1: p.omega_over_w1,
-        ..problems::figure4(modes)
-    }
-    .model()?;
+    let m = forced(p, modes, k_over_k1).model()?;
     let (amp, _) = m.free_tip_amplitude();
     let omega = m.omega();
     let sim = Simulator::new(m)?;
@@ -270,13 +268,7 @@ fn point(
     k_index: usize,
     k_over_k1: f64,
 ) -> Result<Vec<StartResult>, Error> {
-    let m = Forced {
-        k_over_k1,
-        zeta1: p.zeta1,
-        omega_over_w1: p.omega_over_w1,
-        ..problems::figure4(modes)
-    }
-    .model()?;
+    let m = forced(p, modes, k_over_k1).model()?;
     let (amp, vamp) = m.free_tip_amplitude();
     let omega = m.omega();
     let sim = Simulator::new(m)?;
@@ -345,13 +337,8 @@ pub fn compute(p: &Fig5Params, progress: &(dyn Fn() + Sync)) -> Result<Fig5Data,
         }
         None => None,
     };
-    let unit = Forced {
-        zeta1: p.zeta1,
-        omega_over_w1: p.omega_over_w1,
-        ..problems::figure4(1)
-    }
-    .model()?
-    .free_tip_amplitude();
+    // k does not matter: mode 1 does not feel the stop in free flight
+    let unit = forced(p, 1, 100.0).model()?.free_tip_amplitude();
     let mut data = Fig5Data {
         params: p.clone(),
         k_over_k1: grid,
