@@ -37,6 +37,8 @@
 //! | [`experiment`] | §6: the rig in the model's terms by beam theory |
 //! | [`orbit`] | §5.2: the stroboscopic map, period detection (m, n), seeded random starts |
 //! | [`shooting`] | §5.2–5.3: periodic orbits by Newton shooting with the exact monodromy, Floquet multipliers |
+//! | [`continuation`] | periodic orbits continued in k or ω: folds, period doublings, Neimark–Sacker, grazing |
+//! | [`atlas`] | the multi-tap atlas: stable orbits (m, n) and their coexistence over (k, ω), shardable |
 //! | [`problems`] | the paper's parameter sets as named constructors (Figures 3, 4, 6, 9; the linear model) |
 //! | [`verification`] | observed orders, Richardson extrapolation and GCI |
 //! | [`numerics`] | Brent's root finder, Gauss–Legendre quadrature, a fast sine–cosine |
@@ -56,6 +58,7 @@
 //! with `default-features = false` and compiles no CLI crates.
 
 pub mod asymptotics;
+pub mod atlas;
 pub mod citation;
 pub mod continuation;
 pub mod continuum;

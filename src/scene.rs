@@ -64,6 +64,8 @@ pub enum Outcome {
     NotReproduced,
     /// A method result with no claim of the paper to check.
     NoClaim,
+    /// A result beyond the paper (no claim of it to check).
+    Extension,
 }
 
 impl std::fmt::Display for Outcome {
@@ -73,6 +75,7 @@ impl std::fmt::Display for Outcome {
             Outcome::Partly => "partly reproduced",
             Outcome::NotReproduced => "not reproduced",
             Outcome::NoClaim => "a check of our methods",
+            Outcome::Extension => "beyond the paper",
         })
     }
 }
@@ -222,20 +225,30 @@ impl<S: Scene> Entry for S {
         });
         let params = S::params(resolution);
         let data = S::compute(&params, progress)?;
-        let to_json = |what, v: Result<serde_json::Value, serde_json::Error>| {
-            v.map_err(|e| Error::Unsupported(format!("scene {} {what}: {e}", S::NAME)))
-        };
-        let json = to_json("data", serde_json::to_value(&data))?;
-        let params = to_json("parameters", serde_json::to_value(&params))?;
-        Ok(SceneOutput {
-            key_numbers: S::key_numbers(&data),
-            verdict: S::verdict(&data),
-            rendered: S::render(&data)?,
-            data: json,
-            params,
-            provenance,
-        })
+        output_of::<S>(&params, &data, provenance)
     }
+}
+
+/// The key numbers, verdict and rendering of data computed elsewhere (a sweep computed in
+/// shards and merged): the same output as [`Entry::run`] gives for the same data.
+pub fn output_of<S: Scene>(
+    params: &S::Params,
+    data: &S::Data,
+    provenance: Provenance,
+) -> Result<SceneOutput, Error> {
+    let to_json = |what, v: Result<serde_json::Value, serde_json::Error>| {
+        v.map_err(|e| Error::Unsupported(format!("scene {} {what}: {e}", S::NAME)))
+    };
+    let json = to_json("data", serde_json::to_value(data))?;
+    let params = to_json("parameters", serde_json::to_value(params))?;
+    Ok(SceneOutput {
+        key_numbers: S::key_numbers(data),
+        verdict: S::verdict(data),
+        rendered: S::render(data)?,
+        data: json,
+        params,
+        provenance,
+    })
 }
 
 /// Looks a scene up by name.

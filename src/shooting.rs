@@ -126,6 +126,18 @@ impl PeriodicOrbit {
 /// [`TOLERANCE`] in [`MAX_ITERATIONS`] (a guess outside the orbit's basin of convergence,
 /// or a period m that does not exist there), saying how close it came.
 pub fn shoot(sim: &Simulator, x0: &DVector<f64>, m: u64) -> Result<PeriodicOrbit, Error> {
+    shoot_within(sim, x0, m, MAX_ITERATIONS)
+}
+
+/// [`shoot`] with at most `max_iterations` Newton steps (a sweep that tries many guesses
+/// gives up early on those that do not converge fast: from a guess near the orbit, Newton
+/// converges quadratically in a few steps).
+pub fn shoot_within(
+    sim: &Simulator,
+    x0: &DVector<f64>,
+    m: u64,
+    max_iterations: usize,
+) -> Result<PeriodicOrbit, Error> {
     if m == 0 {
         return Err(Error::Unsupported(
             "the orbit period m must be at least 1".into(),
@@ -137,9 +149,9 @@ pub fn shoot(sim: &Simulator, x0: &DVector<f64>, m: u64) -> Result<PeriodicOrbit
     let mut r = relative_residual(&px, &x);
     let mut iterations = 0;
     while r > TOLERANCE {
-        if iterations == MAX_ITERATIONS {
+        if iterations == max_iterations {
             return Err(Error::Unsupported(format!(
-                "shooting for a period-{m} orbit did not converge in {MAX_ITERATIONS} Newton steps (residual {r:.1e}); start closer to the orbit (more transient periods) or try another m"
+                "shooting for a period-{m} orbit did not converge in {max_iterations} Newton steps (residual {r:.1e}); start closer to the orbit (more transient periods) or try another m"
             )));
         }
         iterations += 1;

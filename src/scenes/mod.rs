@@ -29,5 +29,6 @@ registry! {
     fig9::Fig9,
     experiment::Experiment,
     stiffness_matching::StiffnessMatching,
+    atlas::Atlas,
     work_precision::WorkPrecision,
 }

@@ -1,0 +1,127 @@
+//! `cantilever atlas` (the multi-tap atlas, or one shard of its rows, into a JSON file) and
+//! `cantilever atlas-merge` (shards into the scene's output, as `cantilever scene atlas`
+//! writes it).
+
+use crate::progress;
+use impacting_cantilever::atlas::{self, AtlasParams, Partial, Shard};
+use impacting_cantilever::error::{Error, ParameterError};
+use impacting_cantilever::provenance::Provenance;
+use impacting_cantilever::scene::{self, Progress, Resolution, Scene};
+use impacting_cantilever::scenes::atlas::Atlas;
+use std::path::{Path, PathBuf};
+
+/// The grid and search of the atlas (defaults: the book's).
+#[derive(clap::Args)]
+pub struct Args {
+    /// Which rows: shard I of N (rows i with i mod N = I), "0/1" for all.
+    #[arg(long, default_value = "0/1")]
+    pub shard: String,
+    /// The JSON file the rows are written to (atomically).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Start from the book's parameters or the tests' reduced ones.
+    #[arg(long, value_enum, default_value = "book")]
+    pub resolution: ResolutionArg,
+    /// Rows (k values, log-spaced), 1 to 4096.
+    #[arg(long)]
+    pub k_points: Option<usize>,
+    /// Columns (ω values, linear), 1 to 4096.
+    #[arg(long)]
+    pub omega_points: Option<usize>,
+    /// Seeded starts per cell (the first at rest), 1 to 64.
+    #[arg(long)]
+    pub starts: Option<usize>,
+    /// Seed of the random starts.
+    #[arg(long)]
+    pub seed: Option<u64>,
+}
+
+/// `--resolution`.
+#[derive(Clone, Copy, clap::ValueEnum)]
+pub enum ResolutionArg {
+    /// 128 × 128, as in the book.
+    Book,
+    /// 9 × 9, as in the tests.
+    Test,
+}
+
+/// The parameters the flags ask for.
+pub fn params(a: &Args) -> Result<AtlasParams, ParameterError> {
+    let mut p = Atlas::params(match a.resolution {
+        ResolutionArg::Book => Resolution::Book,
+        ResolutionArg::Test => Resolution::Test,
+    });
+    if let Some(v) = a.k_points {
+        p.k_points = v;
+    }
+    if let Some(v) = a.omega_points {
+        p.omega_points = v;
+    }
+    if let Some(v) = a.starts {
+        p.starts = v;
+    }
+    if let Some(v) = a.seed {
+        p.seed = v;
+    }
+    p.validate()?;
+    Ok(p)
+}
+
+/// Computes the shard and writes it; returns the rows written.
+pub fn run(a: &Args) -> Result<usize, Error> {
+    let p = params(a)?;
+    let shard = Shard::parse(&a.shard)?;
+    writable_file(&a.out)?;
+    let bars = progress::Bars::default();
+    let rows = shard.rows(p.k_points).count();
+    let task = bars.task("atlas cells", (rows * p.omega_points) as u64);
+    let part = atlas::compute_shard(&p, shard, &|| task.advance(1))?;
+    drop(task);
+    let json = serde_json::to_string(&part)
+        .map_err(|e| Error::Unsupported(format!("atlas shard: {e}")))?;
+    scene::write_atomically(&a.out, &json)?;
+    Ok(part.rows.len())
+}
+
+/// Reads the shards, merges them and writes the scene's files into `out`.
+pub fn merge(files: &[PathBuf], out: &Path) -> Result<(), Error> {
+    let mut parts = Vec::with_capacity(files.len());
+    for f in files {
+        let bad = |why: String| {
+            ParameterError::new("atlas shard file", f.display(), &format!("an output of `cantilever atlas` ({why})"))
+        };
+        let text = std::fs::read_to_string(f).map_err(|e| bad(e.to_string()))?;
+        let part: Partial = serde_json::from_str(&text).map_err(|e| bad(e.to_string()))?;
+        parts.push(part);
+    }
+    let data = atlas::merge(parts)?;
+    let resolution = if data.params == AtlasParams::book() {
+        "book"
+    } else if data.params == AtlasParams::test() {
+        "test"
+    } else {
+        "custom"
+    };
+    let output = scene::output_of::<Atlas>(&data.params, &data, Provenance::now(resolution))?;
+    let spec = scene::find(Atlas::NAME)?;
+    scene::write(spec, &output, out)
+}
+
+/// `path`'s directory exists (or is created) and accepts a file.
+fn writable_file(path: &Path) -> Result<(), ParameterError> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let fail = |e: std::io::Error| {
+        ParameterError::new("--out", path.display(), &format!("a writable file path ({e})"))
+    };
+    if path.is_dir() {
+        return Err(ParameterError::new("--out", path.display(), "a file path, not a directory"));
+    }
+    std::fs::create_dir_all(&dir).map_err(fail)?;
+    let probe = dir.join(format!(".probe.{}", std::process::id()));
+    std::fs::write(&probe, b"").map_err(fail)?;
+    let _ = std::fs::remove_file(&probe);
+    Ok(())
+}
