@@ -1,6 +1,7 @@
 //! Issue targets: one converged N = 10 orbit with its multipliers at Figure 4's parameters
 //! in ≤ 0.5 ms from a start within the basin (single thread); the four continued Figure 5
-//! branch sets (N = 1, 2, 3, 10, seeded from the brute-force diagram) in ≤ 5 s on 2 cores.
+//! branch sets (N = 1, 2, 3, 10, seeded from the brute-force diagram) in ≤ 5 s on 2 cores;
+//! the book's 128 × 128 N = 10 atlas in ≤ 120 s on 2 cores (ten samples: about 11 minutes).
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use impacting_cantilever::problems;
@@ -37,5 +38,15 @@ fn fig5_branches(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, orbit, fig5_branches);
+fn atlas(c: &mut Criterion) {
+    let p = impacting_cantilever::atlas::AtlasParams::book();
+    let mut g = c.benchmark_group("atlas");
+    g.sample_size(10);
+    g.bench_function("128 x 128 atlas, N = 10 (all threads)", |b| {
+        b.iter(|| impacting_cantilever::atlas::compute(black_box(&p), &|| {}).unwrap())
+    });
+    g.finish();
+}
+
+criterion_group!(benches, orbit, fig5_branches, atlas);
 criterion_main!(benches);

@@ -139,14 +139,20 @@ fn orbits_from_rest_and_coexistence_agree_with_brute_force_transients() {
                     })
                     .collect();
                 let gap = (&ends[0] - &ends[1]).amax() / ends[0].amax();
-                assert!(gap > 1e-3, "the coexisting orbits at {here} are one ({gap:e})");
+                assert!(
+                    gap > 1e-3,
+                    "the coexisting orbits at {here} are one ({gap:e})"
+                );
             }
         }
     }
     eprintln!("{confirmed} confirmed, {unsettled} unsettled, {coexisting} coexisting");
     // measured: 75 of 81 confirmed (the other 6 have no orbit from rest in either), 2
     // cells with two orbits each reached from a start
-    assert!(confirmed >= 70, "{confirmed} confirmed, {unsettled} unsettled");
+    assert!(
+        confirmed >= 70,
+        "{confirmed} confirmed, {unsettled} unsettled"
+    );
     assert!(coexisting >= 1);
 }
 
@@ -169,7 +175,12 @@ fn continued_orbits_are_where_a_slow_frequency_sweep_settles() {
             seed: (p.seed, 0, j as u64),
         };
         let (cell, found) = search.run(&previous).unwrap();
-        for (a, f) in cell.attractors.iter().zip(&found).filter(|(a, _)| a.continued) {
+        for (a, f) in cell
+            .attractors
+            .iter()
+            .zip(&found)
+            .filter(|(a, _)| a.continued)
+        {
             let parent = previous
                 .iter()
                 .find(|g| {
@@ -177,12 +188,17 @@ fn continued_orbits_are_where_a_slow_frequency_sweep_settles() {
                     let end = settle(&sim, &g.strobe[0], 1000, 40, 0).unwrap().state;
                     f.strobe.iter().any(|x| (x - &end).amax() < 1e-6 * x.amax())
                 })
-                .unwrap_or_else(|| panic!("no previous orbit settles on the continued one at ω = {w}"));
+                .unwrap_or_else(|| {
+                    panic!("no previous orbit settles on the continued one at ω = {w}")
+                });
             assert_eq!(parent.attractor.period_m, a.period_m);
             assert!(a.spectral_radius < 1.0);
             checked += 1;
         }
         previous = found;
     }
-    assert!(checked >= omegas.len() - 1, "{checked} continued orbits checked");
+    assert!(
+        checked >= omegas.len() - 1,
+        "{checked} continued orbits checked"
+    );
 }

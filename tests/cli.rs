@@ -434,3 +434,63 @@ fn continue_traces_the_n3_branch_through_its_grazings() {
         assert!(err.contains(bad[0]) && err.lines().count() == 1, "{err}");
     }
 }
+
+#[test]
+fn atlas_shards_merge_into_the_unsharded_atlas() {
+    let dir = std::env::temp_dir().join(format!("cantilever-atlas-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = |name: &str| dir.join(name).display().to_string();
+    let small = [
+        "--resolution",
+        "test",
+        "--k-points",
+        "4",
+        "--omega-points",
+        "3",
+    ];
+    let atlas = |shard: &str, out: &str| {
+        let (code, _, err) =
+            cantilever(&[&["atlas", "--shard", shard, "--out", out][..], &small[..]].concat());
+        assert_eq!(code, 0, "{err}");
+    };
+    atlas("0/2", &path("a.json"));
+    atlas("1/2", &path("b.json"));
+    atlas("0/1", &path("whole.json"));
+    for (files, out) in [
+        (vec![path("b.json"), path("a.json")], "merged"),
+        (vec![path("whole.json")], "one"),
+    ] {
+        let out = path(out);
+        let args: Vec<&str> = ["atlas-merge"]
+            .into_iter()
+            .chain(files.iter().map(String::as_str))
+            .chain(["--out", &out])
+            .collect::<Vec<_>>();
+        let (code, _, err) = cantilever(&args);
+        assert_eq!(code, 0, "{err}");
+    }
+    let data = |out: &str| {
+        let v: serde_json::Value = serde_json::from_str(
+            &std::fs::read_to_string(dir.join(out).join("data.json")).unwrap(),
+        )
+        .unwrap();
+        v["data"].clone()
+    };
+    assert_eq!(data("merged"), data("one"));
+    let svg = |out: &str| std::fs::read_to_string(dir.join(out).join("plot.svg")).unwrap();
+    assert_eq!(svg("merged"), svg("one"));
+    // bad input: exit 2 and one line naming what is wrong
+    for args in [
+        vec!["atlas", "--shard", "2/2", "--out", "x.json"],
+        vec!["atlas", "--k-points", "0", "--out", "x.json"],
+        vec!["atlas", "--starts", "100", "--out", "x.json"],
+    ] {
+        let (code, _, err) = cantilever(&args);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert_eq!(err.trim().lines().count(), 1, "{err}");
+    }
+    let (code, _, err) = cantilever(&["atlas-merge", &path("a.json"), "--out", &path("x")]);
+    assert_eq!(code, 2);
+    assert!(err.contains("row 1 missing"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

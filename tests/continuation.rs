@@ -204,3 +204,50 @@ fn a_fold_joins_two_coexisting_orbits() {
         "the two sides of the fold converge to one orbit"
     );
 }
+
+#[test]
+fn continuation_in_omega_finds_a_grazing_and_a_neimark_sacker_pair() {
+    // N = 3's Figure 4 orbit (k = 100k₁, ω = 2(β₁⁻)²) continued up in ω to 2.2
+    let fam = Family::forced(problems::figure4(3), Parameter::Frequency);
+    let x = fam
+        .simulator(2.0)
+        .unwrap()
+        .run(&DVector::zeros(6), 1000, &mut ())
+        .unwrap()
+        .state;
+    let b =
+        continuation::continue_branch(&fam, &x, 2.0, 1, 1.0, &Settings::new((2.0, 2.2))).unwrap();
+    assert!(b.points.iter().all(|p| p.residual <= 1e-12));
+    let of =
+        |k: BifurcationKind| -> Vec<_> { b.bifurcations.iter().filter(|f| f.kind == k).collect() };
+    let (grazing, ns) = (
+        of(BifurcationKind::Grazing),
+        of(BifurcationKind::NeimarkSacker),
+    );
+    assert_eq!(grazing.len(), 1, "{:?}", b.bifurcations);
+    assert_eq!(grazing[0].impacts, (1, 2));
+    assert_eq!(ns.len(), 1, "{:?}", b.bifurcations);
+    assert!(grazing[0].parameter < ns[0].parameter);
+    // brute force from rest on either side of the grazing (bracket ≤ 1% wide in ω,
+    // transients 1% outside it) and between it and the Neimark–Sacker point
+    let from_rest = |w: f64| {
+        settle(&fam.simulator(w).unwrap(), &DVector::zeros(6), 1000, 40, 0)
+            .unwrap()
+            .kind
+    };
+    let (lo, hi) = grazing[0].between;
+    assert!(hi / lo < 1.01 && (lo..=hi).contains(&grazing[0].parameter));
+    assert_eq!(from_rest(lo / 1.01), OrbitKind::Periodic { m: 1, n: 1 });
+    assert_eq!(from_rest(hi * 1.01), OrbitKind::Periodic { m: 1, n: 2 });
+    // past the Neimark–Sacker point: a complex pair outside the unit circle, and a
+    // transient started near the orbit that does not settle on it
+    let p = b.points.last().unwrap();
+    assert!(p.parameter > ns[0].between.1 && !p.stable);
+    assert!(p.multipliers[0][1] != 0.0 && p.spectral_radius() > 1.0);
+    let sim = fam.simulator(p.parameter).unwrap();
+    let near = DVector::from_vec(p.state.clone()) * 1.001;
+    assert_ne!(
+        settle(&sim, &near, 1000, 40, 0).unwrap().kind,
+        OrbitKind::Periodic { m: 1, n: 2 }
+    );
+}

@@ -103,7 +103,12 @@ impl CellSearch<'_> {
         }
         let (row, column) = (self.seed.1, self.seed.2);
         let mut rng = SplitMix64::for_point(self.seed.0, row, column, s as u64);
-        random_state(&mut rng, n, 4.0 * model.free_tip_amplitude().0, self.sim.omega())
+        random_state(
+            &mut rng,
+            n,
+            4.0 * model.free_tip_amplitude().0,
+            self.sim.omega(),
+        )
     }
 
     /// The stable orbit start s settles on, if its period is at most max_period. The
@@ -165,7 +170,7 @@ impl CellSearch<'_> {
     fn least_period(&self, orbit: PeriodicOrbit) -> Result<Option<PeriodicOrbit>, Error> {
         let m = orbit.period_m;
         let x = DVector::from_column_slice(&orbit.state);
-        for d in (1..m).filter(|d| m % d == 0) {
+        for d in (1..m).filter(|&d| m.is_multiple_of(d)) {
             let pd = self.sim.run(&x, d, &mut ())?.state;
             if relative_residual(&pd, &x) < LEAST_PERIOD {
                 return match shooting::shoot_within(self.sim, &x, d, NEWTON_STEPS) {
@@ -222,4 +227,3 @@ impl CellSearch<'_> {
         Ok(found.len() - 1)
     }
 }
-

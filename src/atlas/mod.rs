@@ -260,7 +260,7 @@ pub struct AtlasData {
 /// Computes row i; `progress` is called once per finished cell.
 pub fn row(p: &AtlasParams, i: usize, progress: &(dyn Fn() + Sync)) -> Result<Row, Error> {
     let k = p.k_over_k1(i);
-    let checked_row = i % p.check_stride == 0;
+    let checked_row = i.is_multiple_of(p.check_stride);
     let mut cells = Vec::with_capacity(p.omega_points);
     let mut previous: Vec<Found> = Vec::new();
     for j in 0..p.omega_points {
@@ -274,9 +274,12 @@ pub fn row(p: &AtlasParams, i: usize, progress: &(dyn Fn() + Sync)) -> Result<Ro
             seed: (p.seed, i as u64, j as u64),
         };
         let (mut cell, found) = search.run(&previous)?;
-        if checked_row && j % p.check_stride == 0 {
+        if checked_row && j.is_multiple_of(p.check_stride) {
             let sim = Simulator::new(p.model(p.check_modes, k, w)?.model()?)?;
-            let check = CellSearch { sim: &sim, ..search };
+            let check = CellSearch {
+                sim: &sim,
+                ..search
+            };
             let orbit = check.from_start(0)?;
             let extra = p.starts..p.starts + p.check_starts;
             cell.check = Some(Check {
@@ -370,7 +373,11 @@ pub fn compute_shard(
 /// This build: version, commit, and whether the tree had uncommitted changes.
 pub fn build() -> String {
     let p = crate::provenance::Provenance::now("");
-    let dirty = if p.dirty == Some(true) { "+changes" } else { "" };
+    let dirty = if p.dirty == Some(true) {
+        "+changes"
+    } else {
+        ""
+    };
     format!("{} {}{dirty}", p.version, p.commit)
 }
 
@@ -382,7 +389,13 @@ pub fn compute(p: &AtlasParams, progress: &(dyn Fn() + Sync)) -> Result<AtlasDat
 /// Combines shards into the atlas. Refuses shards of different parameters, a row given
 /// twice, or a missing row, naming it.
 pub fn merge(parts: Vec<Partial>) -> Result<AtlasData, Error> {
-    let refuse = |what: String| Err(Error::Parameter(ParameterError::new("atlas shards", what, "the shards 0/N … (N−1)/N of one atlas (same parameters), each once")));
+    let refuse = |what: String| {
+        Err(Error::Parameter(ParameterError::new(
+            "atlas shards",
+            what,
+            "the shards 0/N … (N−1)/N of one atlas (same parameters), each once",
+        )))
+    };
     let Some(first) = parts.first() else {
         return refuse("none".into());
     };

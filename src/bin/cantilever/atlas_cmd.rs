@@ -88,7 +88,11 @@ pub fn merge(files: &[PathBuf], out: &Path) -> Result<(), Error> {
     let mut parts = Vec::with_capacity(files.len());
     for f in files {
         let bad = |why: String| {
-            ParameterError::new("atlas shard file", f.display(), &format!("an output of `cantilever atlas` ({why})"))
+            ParameterError::new(
+                "atlas shard file",
+                f.display(),
+                &format!("an output of `cantilever atlas` ({why})"),
+            )
         };
         let text = std::fs::read_to_string(f).map_err(|e| bad(e.to_string()))?;
         let part: Partial = serde_json::from_str(&text).map_err(|e| bad(e.to_string()))?;
@@ -114,10 +118,18 @@ fn writable_file(path: &Path) -> Result<(), ParameterError> {
         _ => PathBuf::from("."),
     };
     let fail = |e: std::io::Error| {
-        ParameterError::new("--out", path.display(), &format!("a writable file path ({e})"))
+        ParameterError::new(
+            "--out",
+            path.display(),
+            &format!("a writable file path ({e})"),
+        )
     };
     if path.is_dir() {
-        return Err(ParameterError::new("--out", path.display(), "a file path, not a directory"));
+        return Err(ParameterError::new(
+            "--out",
+            path.display(),
+            "a file path, not a directory",
+        ));
     }
     std::fs::create_dir_all(&dir).map_err(fail)?;
     let probe = dir.join(format!(".probe.{}", std::process::id()));

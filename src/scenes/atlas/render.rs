@@ -10,7 +10,7 @@ use plotters::prelude::*;
 const NONE: RGBColor = RGBColor(190, 190, 190);
 
 /// Height of a panel's key strip.
-const KEY_HEIGHT: u32 = 84;
+const KEY_HEIGHT: u32 = 100;
 
 /// One map: a caption, the colour of a cell, and the key.
 struct Panel {
@@ -201,9 +201,14 @@ pub fn plot(d: &AtlasData) -> Result<String, RenderError> {
                     while end < row.cells.len() && (panel.color)(&row.cells[end]) == color {
                         end += 1;
                     }
+                    // overlapping the next run and row a little, so that anti-aliasing
+                    // leaves no hairline seams between them
                     let corners = [
                         (d.omega_over_w1[j] - dw, l - dl),
-                        (d.omega_over_w1[end - 1] + dw, l + dl),
+                        (
+                            (d.omega_over_w1[end - 1] + 1.3 * dw).min(w1),
+                            (l + 1.3 * dl).min(l1),
+                        ),
                     ];
                     chart
                         .draw_series(std::iter::once(Rectangle::new(corners, color.filled())))
@@ -226,8 +231,8 @@ fn draw_key<DB: DrawingBackend>(
     let width = area.dim_in_pixel().0 as i32;
     let (mut x, mut y) = (70, 8);
     for (color, text) in items {
-        // 18 px sans-serif: about 10 px per character
-        let w = 28 + 10 * text.chars().count() as i32 + 18;
+        // 18 px sans-serif: about 9 px per character
+        let w = 28 + 9 * text.chars().count() as i32 + 14;
         if x + w > width {
             x = 70;
             y += 30;
