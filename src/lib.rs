@@ -37,6 +37,7 @@
 //! | [`experiment`] | §6: the rig in the model's terms by beam theory |
 //! | [`orbit`] | §5.2: the stroboscopic map, period detection (m, n), seeded random starts |
 //! | [`shooting`] | §5.2–5.3: periodic orbits by Newton shooting with the exact monodromy, Floquet multipliers |
+//! | [`impact_section`] | §5.3: periodic orbits by Newton shooting on the impact section d = d₀, ḋ > 0 |
 //! | [`continuation`] | periodic orbits continued in k or ω: folds, period doublings, Neimark–Sacker, grazing |
 //! | [`atlas`] | the multi-tap atlas: stable orbits (m, n) and their coexistence over (k, ω), shardable |
 //! | [`problems`] | the paper's parameter sets as named constructors (Figures 3, 4, 6, 9; the linear model) |
@@ -72,6 +73,7 @@ pub mod flow;
 pub mod galerkin;
 pub mod golden;
 pub mod harmonics;
+pub mod impact_section;
 pub mod numerics;
 pub mod orbit;
 pub mod problems;

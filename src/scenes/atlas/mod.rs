@@ -121,7 +121,7 @@ impl Scene for Atlas {
         "multi-tap atlas: stable orbits (m, n) and their coexistence over k and ω, N = 10";
     const CLAIM: &'static str = "None: it shows multiple taps at single parameter points (Figures 4, 6(b), 9), not where in $(k, \\omega)$ they occur.";
     const CHAPTER: &'static str = "atlas.md";
-    const METHOD: &'static str = "each row is one k, swept up in ω (128 × 128 cells, k/k₁ log-spaced 1–10⁴, ω/(β₁⁻)² linear 0.5–3): a cell's stable periodic orbits come from natural continuation of the previous cell's orbits and from three seeded starts (rest and two random states, 300-period transients), each converged by Newton shooting to a relative residual of 1e-12, reduced to its least period m ≤ 8, kept if its Floquet multipliers lie inside the unit circle, and counted once; every 16th row and column is checked with N = 20 from rest and with 16 further random starts";
+    const METHOD: &'static str = "each row is one k, swept up in ω (128 × 128 cells, k/k₁ log-spaced 1–10⁴, ω/(β₁⁻)² linear 0.5–3): a cell's stable periodic orbits come from natural continuation of the previous cell's orbits and from three seeded starts (rest and two random states, transients of up to 300 periods, read after every 100), each converged by Newton shooting to a relative residual of 1e-12, reduced to its least period m ≤ 8, kept if its Floquet multipliers lie inside the unit circle, and counted once; every 16th row and column is checked with N = 20 from rest and with 16 further random starts";
     const HEADLINE: &'static [(&'static str, &'static str)] = &[
         ("cells tapping more than once per forcing period (from rest)", "multi-tap cells"),
         ("cells with coexisting stable orbits", "coexisting cells"),
