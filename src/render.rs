@@ -95,6 +95,28 @@ where
         .map_err(drawing)
 }
 
+/// Viridis (van der Walt & Smith) at r ∈ [0, 1], linear between five of its stops: a
+/// perceptually ordered colour scale for maps.
+pub fn viridis(r: f64) -> RGBColor {
+    let stops = [
+        (0.0, (68, 1, 84)),
+        (0.25, (59, 82, 139)),
+        (0.5, (33, 145, 140)),
+        (0.75, (94, 201, 98)),
+        (1.0, (253, 231, 37)),
+    ];
+    let r = r.clamp(0.0, 1.0);
+    for w in stops.windows(2) {
+        let ((a, ca), (b, cb)) = (w[0], w[1]);
+        if r <= b {
+            let t = (r - a) / (b - a);
+            let mix = |x: u8, y: u8| (x as f64 + t * (y as f64 - x as f64)).round() as u8;
+            return RGBColor(mix(ca.0, cb.0), mix(ca.1, cb.1), mix(ca.2, cb.2));
+        }
+    }
+    RGBColor(253, 231, 37)
+}
+
 /// The colour of series `i` (a colour-blind-safe palette, Wong 2011).
 pub fn palette(i: usize) -> RGBColor {
     const C: [RGBColor; 8] = [

@@ -3,7 +3,9 @@
 
 use super::{cells, label, rest_labels};
 use crate::atlas::{AtlasData, Cell};
-use crate::render::{cell, drawing, markdown_table, styled_mesh, RenderError, LABEL_FONT, WIDTH};
+use crate::render::{
+    cell, drawing, markdown_table, styled_mesh, viridis, RenderError, LABEL_FONT, WIDTH,
+};
 use plotters::prelude::*;
 
 /// No stable orbit of period ≤ max_m (from rest, or at all).
@@ -68,27 +70,6 @@ fn count_color(c: &Cell) -> RGBColor {
         3 => RGBColor(33, 113, 181),
         _ => RGBColor(8, 48, 107),
     }
-}
-
-/// Viridis (van der Walt & Smith) at r ∈ [0, 1], linear between five of its stops.
-fn viridis(r: f64) -> RGBColor {
-    let stops = [
-        (0.0, (68, 1, 84)),
-        (0.25, (59, 82, 139)),
-        (0.5, (33, 145, 140)),
-        (0.75, (94, 201, 98)),
-        (1.0, (253, 231, 37)),
-    ];
-    let r = r.clamp(0.0, 1.0);
-    for w in stops.windows(2) {
-        let ((a, ca), (b, cb)) = (w[0], w[1]);
-        if r <= b {
-            let t = (r - a) / (b - a);
-            let mix = |x: u8, y: u8| (x as f64 + t * (y as f64 - x as f64)).round() as u8;
-            return RGBColor(mix(ca.0, cb.0), mix(ca.1, cb.1), mix(ca.2, cb.2));
-        }
-    }
-    RGBColor(253, 231, 37)
 }
 
 /// The spectral radius of the orbit from rest, in five classes of width 0.2 (so that runs

@@ -2,30 +2,8 @@
 //! shades and marks; and a table of the points that are not plain values.
 
 use super::{Cell, MapData};
-use crate::render::{drawing, markdown_table, styled_mesh, RenderError, CAPTION_FONT, LABEL_FONT, WIDTH};
+use crate::render::{viridis, drawing, markdown_table, styled_mesh, RenderError, CAPTION_FONT, LABEL_FONT, WIDTH};
 use plotters::prelude::*;
-
-/// A perceptually ordered colour for r ∈ [0, 1]: viridis (van der Walt & Smith), linear
-/// between five of its stops.
-fn ramp(r: f64) -> RGBColor {
-    let stops = [
-        (0.0, (68, 1, 84)),
-        (0.25, (59, 82, 139)),
-        (0.5, (33, 145, 140)),
-        (0.75, (94, 201, 98)),
-        (1.0, (253, 231, 37)),
-    ];
-    let r = r.clamp(0.0, 1.0);
-    for w in stops.windows(2) {
-        let ((a, ca), (b, cb)) = (w[0], w[1]);
-        if r <= b {
-            let t = (r - a) / (b - a);
-            let mix = |x: u8, y: u8| (x as f64 + t * (y as f64 - x as f64)).round() as u8;
-            return RGBColor(mix(ca.0, cb.0), mix(ca.1, cb.1), mix(ca.2, cb.2));
-        }
-    }
-    RGBColor(253, 231, 37)
-}
 
 fn special(c: &Cell) -> Option<(RGBColor, &'static str)> {
     match c {
@@ -79,7 +57,7 @@ pub fn plot(d: &MapData) -> Result<String, RenderError> {
             let color = match special(&pt.cell) {
                 Some((c, _)) => c,
                 None => match pt.cell {
-                    Cell::Value(r) => ramp(r),
+                    Cell::Value(r) => viridis(r),
                     _ => WHITE,
                 },
             };
@@ -112,7 +90,7 @@ pub fn plot(d: &MapData) -> Result<String, RenderError> {
             bar_chart
                 .draw_series(std::iter::once(Rectangle::new(
                     [(0.0, r), (1.0, r + 0.01)],
-                    ramp(r + 0.005).filled(),
+                    viridis(r + 0.005).filled(),
                 )))
                 .map_err(drawing)?;
         }
