@@ -100,7 +100,10 @@ fn return_map(
     };
     let mut events = Events::default();
     sim.run_until(x, start, end, &mut events)?;
-    // entries strictly after the start (a start a round-off outside Σ enters at once)
+    // entries strictly after the start: a start a round-off outside Σ enters within
+    // ~1e-16 T; a genuine next entry comes after a whole contact and a free flight, far
+    // longer than 1e-9 T unless the orbit grazes (where the section is not transversal
+    // and this formulation does not apply)
     let after = |c: &Clock| {
         (c.cycles - start.cycles) as f64 * period + (c.offset - start.offset) > 1e-9 * period
     };
@@ -153,6 +156,8 @@ pub fn shoot(
     }
     let period = sim.period();
     let dim = x0.len();
+    // the n-th entry of an orbit of period m ≤ 32 (the longest [`crate::orbit`] labels)
+    // comes within m periods; twice that leaves room for a guess off the orbit
     let horizon = 64;
     let mut x = onto_section(sim, x0);
     let mut t0 = Clock::at_time(period, start.offset);

@@ -64,6 +64,28 @@ where
         .map_err(drawing)
 }
 
+/// Draws the axes of a map over (ω, log₁₀ k): ω/(β₁⁻)² horizontally with `x_labels`
+/// ticks, k/k₁ vertically with a tick per decade of [l0, l1], no grid.
+pub fn omega_log_k_mesh<'a, DB: DrawingBackend + 'a>(
+    chart: &mut ChartContext<
+        'a,
+        DB,
+        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+    >,
+    (l0, l1): (f64, f64),
+    x_labels: usize,
+) -> Result<(), RenderError> {
+    styled_mesh(chart)
+        .disable_mesh()
+        .x_desc("ω / (β₁⁻)²")
+        .y_desc("k / k₁")
+        .y_label_formatter(&|l| format!("1e{l:.0}"))
+        .y_labels(((l1 - l0) as usize + 1).max(2))
+        .x_labels(x_labels)
+        .draw()
+        .map_err(drawing)
+}
+
 /// A legend entry for a solid line of `style`.
 pub fn solid_key(style: ShapeStyle) -> impl Fn((i32, i32)) -> PathElement<(i32, i32)> {
     move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], style)

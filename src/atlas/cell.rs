@@ -22,7 +22,10 @@ const SAME_ORBIT: f64 = 1e-6;
 const NEWTON_STEPS: usize = 12;
 
 /// A period d < m is the least period when P^d(x) returns to x to this relative distance
-/// (Newton on P^m converges to a period-d orbit too when d divides m).
+/// (Newton on P^m converges to a period-d orbit too when d divides m). A period-d orbit
+/// converged to 1e-12 returns to ~1e-12; a genuine period-m orbit's strobe points are
+/// distinct orbits' worth apart (≥ 1.3e-2, as for [`SAME_ORBIT`]), so 1e-6 separates them
+/// with six decades on either side.
 const LEAST_PERIOD: f64 = 1e-6;
 
 /// Before the last third of a transient, Newton is tried only from a start this close to

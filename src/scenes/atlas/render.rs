@@ -4,7 +4,7 @@
 use super::{cells, label, rest_labels};
 use crate::atlas::{AtlasData, Cell};
 use crate::render::{
-    cell, drawing, markdown_table, styled_mesh, viridis, RenderError, LABEL_FONT, WIDTH,
+    cell, drawing, markdown_table, omega_log_k_mesh, viridis, RenderError, LABEL_FONT, WIDTH,
 };
 use plotters::prelude::*;
 
@@ -164,15 +164,7 @@ pub fn plot(d: &AtlasData) -> Result<String, RenderError> {
                 .y_label_area_size(64)
                 .build_cartesian_2d(w0..w1, l0..l1)
                 .map_err(drawing)?;
-            styled_mesh(&mut chart)
-                .disable_mesh()
-                .x_desc("ω / (β₁⁻)²")
-                .y_desc("k / k₁")
-                .y_label_formatter(&|l| format!("1e{l:.0}"))
-                .y_labels(((l1 - l0).round() as usize + 1).max(2))
-                .x_labels(6)
-                .draw()
-                .map_err(drawing)?;
+            omega_log_k_mesh(&mut chart, (l0, l1), 6)?;
             // runs of equal colour along a row are one rectangle each
             for (row, &l) in d.rows.iter().zip(&ks) {
                 let mut j = 0;

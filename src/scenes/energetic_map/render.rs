@@ -2,7 +2,7 @@
 //! shades and marks; and a table of the points that are not plain values.
 
 use super::{Cell, MapData};
-use crate::render::{viridis, drawing, markdown_table, styled_mesh, RenderError, CAPTION_FONT, LABEL_FONT, WIDTH};
+use crate::render::{omega_log_k_mesh, viridis, drawing, markdown_table, styled_mesh, RenderError, CAPTION_FONT, LABEL_FONT, WIDTH};
 use plotters::prelude::*;
 
 fn special(c: &Cell) -> Option<(RGBColor, &'static str)> {
@@ -43,14 +43,8 @@ pub fn plot(d: &MapData) -> Result<String, RenderError> {
             .y_label_area_size(70)
             .build_cartesian_2d(w0..w1, l0..l1)
             .map_err(drawing)?;
-        styled_mesh(&mut chart)
-            .disable_mesh()
-            .x_desc("ω / (β₁⁻)²")
-            .y_desc("k / k₁")
-            .y_label_formatter(&|l| format!("1e{l:.0}"))
-            .y_labels(((l1 - l0) as usize + 1).max(2))
-            .draw()
-            .map_err(drawing)?;
+        // plotters' default of 10 ω ticks
+        omega_log_k_mesh(&mut chart, (l0, l1), 10)?;
         for pt in &d.points {
             let (w, l) = (pt.omega_over_w1, pt.k_over_k1.log10());
             let corners = [(w - dw, l - dk), (w + dw, l + dk)];
