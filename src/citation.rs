@@ -36,7 +36,7 @@ fn year(p: &Provenance) -> &str {
 /// The commit as cited: its first 12 hex digits, marked when the tree was dirty (a number
 /// from uncommitted code cannot be reproduced from the commit alone).
 fn commit(p: &Provenance) -> String {
-    let short = p.commit.get(..12).unwrap_or(p.commit);
+    let short = p.commit.get(..12).unwrap_or(&p.commit);
     if p.dirty == Some(true) {
         format!("{short}, with uncommitted changes")
     } else {
@@ -77,12 +77,13 @@ mod tests {
     #[test]
     fn bibtex_braces_balance_and_the_commit_is_cited() {
         let p = Provenance {
-            version: "0.1.0",
-            commit: "0123456789abcdef0123",
+            version: "0.1.0".into(),
+            commit: "0123456789abcdef0123".into(),
             dirty: Some(true),
-            toolchain: "rustc",
+            toolchain: "rustc".into(),
             date: "2026-11-21T00:00:00Z".into(),
             resolution: "book".into(),
+            fingerprint: None,
         };
         for b in [software_bibtex(&p), PAPER_BIBTEX.to_string()] {
             let depth = b.chars().try_fold(0i32, |d, c| match c {

@@ -50,6 +50,7 @@
 //! | [`scenes`] | the registry and one folder per result |
 //! | [`render`] | shared plotting and table helpers (no numerics) |
 //! | [`report`] | key numbers rounded to the digits the method resolves |
+//! | [`diff`] | which key numbers moved between two runs, judged against their uncertainties |
 //! | [`error`] | the crate's error type and the parameter checks |
 //! | [`prelude`] | what a program using the library needs in one `use` |
 //! | `book` | (feature `book`) the mdBook build with LaTeX → MathML |
@@ -64,6 +65,7 @@ pub mod citation;
 pub mod continuation;
 pub mod continuum;
 pub mod convergence;
+pub mod diff;
 pub mod dopri5;
 pub mod energetic;
 pub mod error;

@@ -3,39 +3,56 @@
 //! resolution. Recorded in every scene's data.json and key_numbers.json and in the footer
 //! of every book page.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
+
+include!(concat!(env!("OUT_DIR"), "/fingerprints.rs"));
 
 /// The provenance of a run.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Provenance {
     /// The crate's version.
-    pub version: &'static str,
+    pub version: String,
     /// The git commit of the build ("unknown" outside a repository).
-    pub commit: &'static str,
+    pub commit: String,
     /// Whether tracked files differed from that commit (`None` outside a repository).
     pub dirty: Option<bool>,
     /// The compiler.
-    pub toolchain: &'static str,
+    pub toolchain: String,
     /// When the numbers were computed (UTC, ISO 8601).
     pub date: String,
     /// The resolution ("book" or "test").
     pub resolution: String,
+    /// For a scene's numbers: a hash of every source they can depend on (the scene's folder
+    /// and each library module it names, transitively), `Cargo.lock` and the compiler
+    /// ([`scene_fingerprint`]). Equal fingerprints mean the same code computed them.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fingerprint: Option<String>,
 }
 
 impl Provenance {
     /// The provenance of a run now, at `resolution`.
     pub fn now(resolution: &str) -> Self {
         Self {
-            version: env!("CARGO_PKG_VERSION"),
-            commit: env!("CANTILEVER_GIT_COMMIT"),
+            version: env!("CARGO_PKG_VERSION").to_string(),
+            commit: env!("CANTILEVER_GIT_COMMIT").to_string(),
             dirty: match env!("CANTILEVER_GIT_DIRTY") {
                 "true" => Some(true),
                 "false" => Some(false),
                 _ => None,
             },
-            toolchain: env!("CANTILEVER_TOOLCHAIN"),
+            toolchain: env!("CANTILEVER_TOOLCHAIN").to_string(),
             date: utc_now(),
             resolution: resolution.to_string(),
+            fingerprint: None,
+        }
+    }
+
+    /// The provenance of scene module `module`'s numbers computed now (with its
+    /// fingerprint).
+    pub fn of_scene(module: &str, resolution: &str) -> Self {
+        Self {
+            fingerprint: scene_fingerprint(module).map(str::to_string),
+            ..Self::now(resolution)
         }
     }
 
@@ -46,11 +63,7 @@ impl Provenance {
         } else {
             ""
         };
-        let commit = if self.commit.len() >= 12 {
-            &self.commit[..12]
-        } else {
-            self.commit
-        };
+        let commit = self.commit.get(..12).unwrap_or(&self.commit);
         let resolution = match self.resolution.as_str() {
             "book" => "full resolution",
             "test" => "the tests' reduced resolution",
@@ -61,6 +74,18 @@ impl Provenance {
             self.version, self.toolchain, self.date
         )
     }
+}
+
+/// The fingerprint of scene module `module` (`fig4`, `fig3abc`: the folder under
+/// `src/scenes/`) in this build: a 128-bit hash of the sources its numbers can depend on,
+/// computed by `build.rs` from the `crate::` paths each file names. It is conservative (a
+/// module named only in a comment still counts), so an unchanged fingerprint means no
+/// source the scene can reach changed.
+pub fn scene_fingerprint(module: &str) -> Option<&'static str> {
+    SCENE_FINGERPRINTS
+        .iter()
+        .find(|(m, _)| *m == module)
+        .map(|(_, f)| *f)
 }
 
 /// The current UTC time as `YYYY-MM-DDThh:mm:ssZ` (days-to-civil, Hinnant's algorithm).

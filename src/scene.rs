@@ -185,6 +185,8 @@ pub trait Entry: Sync {
     /// Whether the tests run this scene at a reduced resolution (its parameters differ
     /// between [`Resolution::Test`] and [`Resolution::Book`]).
     fn reduced_for_tests(&self) -> bool;
+    /// The folder under `src/scenes/` that holds it (its fingerprint's name).
+    fn module(&self) -> &'static str;
     /// Computes, picks the key numbers and the verdict, renders.
     fn run(&self, resolution: Resolution, progress: &dyn Progress) -> Result<SceneOutput, Error>;
 }
@@ -218,15 +220,40 @@ impl<S: Scene> Entry for S {
         let json = |r| serde_json::to_value(S::params(r)).ok();
         json(Resolution::Test) != json(Resolution::Book)
     }
+    fn module(&self) -> &'static str {
+        module_of::<S>()
+    }
     fn run(&self, resolution: Resolution, progress: &dyn Progress) -> Result<SceneOutput, Error> {
-        let provenance = Provenance::now(match resolution {
+        run_with::<S>(&S::params(resolution), resolution, progress)
+    }
+}
+
+/// The folder under `src/scenes/` that holds scene type `S` (`fig3abc` for `Fig3abc`).
+pub fn module_of<S: Scene>() -> &'static str {
+    let path = std::any::type_name::<S>();
+    path.split("::scenes::")
+        .nth(1)
+        .and_then(|rest| rest.split("::").next())
+        .unwrap_or("")
+}
+
+/// Runs scene `S` with parameters of the caller's choosing (a variant of its model, say) and
+/// gives the same output as [`Entry::run`] does for its own. `resolution` is recorded in
+/// the provenance.
+pub fn run_with<S: Scene>(
+    params: &S::Params,
+    resolution: Resolution,
+    progress: &dyn Progress,
+) -> Result<SceneOutput, Error> {
+    let provenance = Provenance::of_scene(
+        module_of::<S>(),
+        match resolution {
             Resolution::Book => "book",
             Resolution::Test => "test",
-        });
-        let params = S::params(resolution);
-        let data = S::compute(&params, progress)?;
-        output_of::<S>(&params, &data, provenance)
-    }
+        },
+    );
+    let data = S::compute(params, progress)?;
+    output_of::<S>(params, &data, provenance)
 }
 
 /// The key numbers, verdict and rendering of data computed elsewhere (a sweep computed in

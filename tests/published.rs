@@ -1,36 +1,50 @@
-//! The numbers the book publishes, under regression: every scene at the book's full
-//! resolution, its key numbers (value ± uncertainty, unit) against the committed snapshot
-//! `tests/snapshots/published__book-<scene>.snap`. A change that moves any published
-//! number fails here with a diff of the lines that moved.
+//! The numbers the book publishes, under regression: one trial per scene, each computing the
+//! scene at the book's full resolution and comparing its key numbers (value ± uncertainty,
+//! unit) with the committed snapshot `tests/snapshots/published__book-<scene>.snap`. A change
+//! that moves a published number fails that scene's trial with a diff of the lines that moved.
 //!
-//! Every scene is checked even when an earlier one fails, so one run names all of them.
-//! The whole set takes about 25 s on two cores (Figure 5's sweep is most of it).
+//! This is the slow tier (about two minutes on two cores, most of it the atlas). It runs with
+//! `--all-features` (feature `published`), as the README's test command does; a plain
+//! `cargo test` lists the trials as ignored. Name scenes to run only those, in any profile:
+//!
+//! ```sh
+//! cargo test --release --test published -- fig6      # one scene
+//! cargo test --release --test published -- fig3      # every scene whose name has "fig3"
+//! cargo test --release --test published -- --list    # the trials
+//! ```
+//!
+//! A custom harness (libtest-mimic) rather than `#[test]` functions, so the trials come from
+//! the scene registry itself: a new scene is checked without a line here.
 
-use impacting_cantilever::scene::{Resolution, Silent};
+use impacting_cantilever::scene::{Entry, Resolution, Silent};
 use impacting_cantilever::scenes;
-use std::panic::{catch_unwind, AssertUnwindSafe};
+use libtest_mimic::{Arguments, Failed, Trial};
+use std::time::Instant;
 
-#[test]
-fn every_published_key_number_at_book_resolution() {
-    let mut moved = Vec::new();
-    for spec in scenes::all() {
-        let name = spec.name();
-        let out = spec
-            .run(Resolution::Book, &Silent)
-            .unwrap_or_else(|e| panic!("{name} at book resolution: {e}"));
-        assert_eq!(out.provenance.resolution, "book");
-        let snapshot = out.key_numbers.to_snapshot();
-        let checked = catch_unwind(AssertUnwindSafe(|| {
-            insta::assert_snapshot!(format!("book-{name}"), snapshot);
-        }));
-        if checked.is_err() {
-            moved.push(name);
-        }
+fn check(spec: &'static dyn Entry) -> Result<(), Failed> {
+    let name = spec.name();
+    let started = Instant::now();
+    let out = spec
+        .run(Resolution::Book, &Silent)
+        .map_err(|e| format!("{name} at book resolution: {e}"))?;
+    if out.provenance.resolution != "book" {
+        return Err(format!("{name}: ran at {} resolution", out.provenance.resolution).into());
     }
-    assert!(
-        moved.is_empty(),
-        "published numbers moved in: {} (diffs above; if the change is intended, \
-         rerun with INSTA_UPDATE=always (or `cargo insta review`), and update the chapters and errata that cite them)",
-        moved.join(", ")
-    );
+    let snapshot = out.key_numbers.to_snapshot();
+    // insta panics with the diff; the harness reports the panic as this trial's failure
+    insta::assert_snapshot!(format!("book-{name}"), snapshot);
+    eprintln!("published {name}: {:.1} s", started.elapsed().as_secs_f64());
+    Ok(())
+}
+
+fn main() {
+    let args = Arguments::from_args();
+    // without the feature, run a scene only when it is asked for by name
+    let ignore = !cfg!(feature = "published") && args.filter.is_none();
+    let trials = scenes::all()
+        .iter()
+        .copied()
+        .map(|spec| Trial::test(spec.name(), move || check(spec)).with_ignored_flag(ignore))
+        .collect();
+    libtest_mimic::run(&args, trials).exit();
 }

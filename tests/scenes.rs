@@ -3,32 +3,91 @@
 //! rather than re-accepted. The numbers at the book's resolution are in `published.rs`
 //! (scenes that are cheap at full resolution are snapshotted there only).
 
-use impacting_cantilever::scene::{Resolution, Silent};
+use impacting_cantilever::provenance::Provenance;
+use impacting_cantilever::scene::{self, Resolution, Scene, SceneOutput, Silent};
+use impacting_cantilever::scenes::fig4::Fig4;
+use impacting_cantilever::scenes::fig5::Fig5;
 use impacting_cantilever::scenes::{self, fig2, spectrum};
+use std::sync::OnceLock;
 
-#[test]
-fn every_scene_key_numbers_snapshot() {
-    for spec in scenes::all() {
-        let out = spec.run(Resolution::Test, &Silent).unwrap();
-        let name = spec.name();
-        assert!(!out.key_numbers.0.is_empty(), "{name} has key numbers");
-        assert!(out.rendered.svg.starts_with("<svg"), "{name} draws a plot");
-        // a table with a header, its separator and at least one data row
-        let rows = out
-            .rendered
-            .table
-            .lines()
-            .filter(|l| l.starts_with('|'))
-            .count();
-        assert!(rows >= 3, "{name} has a table with data ({rows} rows)");
-        assert!(
-            !out.verdict.evidence.is_empty(),
-            "{name} states its evidence"
-        );
-        if spec.reduced_for_tests() {
-            insta::assert_snapshot!(name, out.key_numbers.to_snapshot());
-        }
+/// A scene's data at the tests' resolution, computed once for every test that reads it
+/// (the snapshot and the claims of Figures 4 and 5 read the same data).
+fn cached<S: Scene>(cell: &'static OnceLock<S::Data>) -> &'static S::Data {
+    cell.get_or_init(|| S::compute(&S::params(Resolution::Test), &Silent).unwrap())
+}
+
+static FIG4: OnceLock<<Fig4 as Scene>::Data> = OnceLock::new();
+static FIG5: OnceLock<<Fig5 as Scene>::Data> = OnceLock::new();
+
+/// The output of a scene whose data are [`cached`].
+fn output_of_cached<S: Scene>(cell: &'static OnceLock<S::Data>) -> SceneOutput {
+    let provenance = Provenance::of_scene(scene::module_of::<S>(), "test");
+    scene::output_of::<S>(&S::params(Resolution::Test), cached::<S>(cell), provenance).unwrap()
+}
+
+/// One scene at the tests' resolution: it has key numbers, a plot, a table with data and
+/// evidence; where that resolution is reduced, its key numbers match the snapshot.
+fn scene_at_test_resolution(name: &str) {
+    let spec = scene::find(name).unwrap();
+    let out = match name {
+        "fig4" => output_of_cached::<Fig4>(&FIG4),
+        "fig5" => output_of_cached::<Fig5>(&FIG5),
+        _ => spec.run(Resolution::Test, &Silent).unwrap(),
+    };
+    assert!(!out.key_numbers.0.is_empty(), "{name} has key numbers");
+    assert!(out.rendered.svg.starts_with("<svg"), "{name} draws a plot");
+    // a table with a header, its separator and at least one data row
+    let rows = out
+        .rendered
+        .table
+        .lines()
+        .filter(|l| l.starts_with('|'))
+        .count();
+    assert!(rows >= 3, "{name} has a table with data ({rows} rows)");
+    assert!(
+        !out.verdict.evidence.is_empty(),
+        "{name} states its evidence"
+    );
+    if spec.reduced_for_tests() {
+        insta::assert_snapshot!(name, out.key_numbers.to_snapshot());
     }
+}
+
+/// One test per scene, so that they run in parallel and fail separately; a test below
+/// checks that the list is the registry.
+macro_rules! per_scene {
+    ($($test:ident => $name:literal),* $(,)?) => {
+        $(
+            #[test]
+            fn $test() {
+                scene_at_test_resolution($name);
+            }
+        )*
+
+        #[test]
+        fn every_registered_scene_has_its_test() {
+            let listed = [$($name),*];
+            let registered: Vec<&str> = scenes::all().iter().map(|s| s.name()).collect();
+            assert_eq!(registered, listed, "add the scene to per_scene! in tests/scenes.rs");
+        }
+    };
+}
+
+per_scene! {
+    scene_spectrum => "spectrum",
+    scene_fig2 => "fig2",
+    scene_restitution => "restitution",
+    scene_fig3_abc => "fig3-abc",
+    scene_fig3_d => "fig3-d",
+    scene_fig4 => "fig4",
+    scene_fig5 => "fig5",
+    scene_fig6 => "fig6",
+    scene_energetic_map => "energetic-map",
+    scene_fig9 => "fig9",
+    scene_experiment => "experiment",
+    scene_stiffness_matching => "stiffness-matching",
+    scene_atlas => "atlas",
+    scene_work_precision => "work-precision",
 }
 
 #[test]
@@ -140,8 +199,7 @@ fn work_precision_methods_agree_and_the_exact_one_is_at_round_off() {
 #[test]
 fn figure_4_verdicts_and_their_evidence() {
     use impacting_cantilever::orbit::OrbitKind;
-    use impacting_cantilever::scenes::fig4::{compute, Fig4Params};
-    let d = compute(&Fig4Params::test()).unwrap();
+    let d = cached::<Fig4>(&FIG4);
     for p in &d.panels {
         // N = 1, 2, 10 reproduce the paper; N = 3 does not (a known, documented mismatch:
         // if it starts to agree, the Figure 4 chapter and the errata must change)
@@ -219,8 +277,7 @@ fn figure_5_is_deterministic_whatever_the_thread_count() {
 #[test]
 fn figure_5_claims_at_test_resolution() {
     use impacting_cantilever::orbit::OrbitKind;
-    use impacting_cantilever::scenes::fig5::{compute, Fig5Params};
-    let d = compute(&Fig5Params::test(), &|| {}).unwrap();
+    let d = cached::<Fig5>(&FIG5);
     let c = &d.claims;
     // "for small k each model predicts a stable (1,1) orbit with quantitative agreement".
     // The truncations differ only through how well they resolve the contact: at the

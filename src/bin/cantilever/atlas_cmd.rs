@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 
 /// The grid and search of the atlas (defaults: the book's).
 #[derive(clap::Args)]
-pub struct Args {
+pub struct AtlasArgs {
     /// Which rows: shard I of N (rows i with i mod N = I), "0/1" for all.
     #[arg(long, default_value = "0/1")]
     pub shard: String,
@@ -46,7 +46,7 @@ pub enum ResolutionArg {
 }
 
 /// The parameters the flags ask for.
-pub fn params(a: &Args) -> Result<AtlasParams, ParameterError> {
+pub fn params(a: &AtlasArgs) -> Result<AtlasParams, ParameterError> {
     let mut p = Atlas::params(match a.resolution {
         ResolutionArg::Book => Resolution::Book,
         ResolutionArg::Test => Resolution::Test,
@@ -68,7 +68,7 @@ pub fn params(a: &Args) -> Result<AtlasParams, ParameterError> {
 }
 
 /// Computes the shard and writes it; returns the rows written.
-pub fn run(a: &Args) -> Result<usize, Error> {
+pub fn run(a: &AtlasArgs) -> Result<usize, Error> {
     let p = params(a)?;
     let shard = Shard::parse(&a.shard)?;
     writable_file(&a.out)?;
@@ -106,7 +106,11 @@ pub fn merge(files: &[PathBuf], out: &Path) -> Result<(), Error> {
     } else {
         "custom"
     };
-    let output = scene::output_of::<Atlas>(&data.params, &data, Provenance::now(resolution))?;
+    let output = scene::output_of::<Atlas>(
+        &data.params,
+        &data,
+        Provenance::of_scene("atlas", resolution),
+    )?;
     let spec = scene::find(Atlas::NAME)?;
     scene::write(spec, &output, out)
 }

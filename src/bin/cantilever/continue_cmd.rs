@@ -18,9 +18,9 @@ pub enum ParameterArg {
 
 /// The command's inputs: the start orbit of `orbit`, the parameter and where to go.
 #[derive(Debug, Clone, clap::Args)]
-pub struct Args {
+pub struct ContinueArgs {
     #[command(flatten)]
-    pub orbit: orbit::Args,
+    pub orbit: orbit::OrbitArgs,
     /// The parameter continued; the branch starts at its value in the model options.
     #[arg(long, value_enum)]
     pub parameter: ParameterArg,
@@ -54,7 +54,7 @@ pub struct Report {
 }
 
 /// Traces the branch.
-pub fn run(args: &Args) -> Result<Report, Error> {
+pub fn run(args: &ContinueArgs) -> Result<Report, Error> {
     let a = &args.orbit.model;
     let (parameter, p0) = match args.parameter {
         ParameterArg::StopStiffness => (Parameter::StopStiffness, a.stop_stiffness),

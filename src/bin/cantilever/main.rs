@@ -6,6 +6,7 @@
 mod atlas_cmd;
 mod cite;
 mod continue_cmd;
+mod diff_cmd;
 mod orbit;
 mod progress;
 mod simulate;
@@ -76,7 +77,7 @@ enum Command {
     /// k₁ and the free tip amplitude at ω.
     Simulate {
         #[command(flatten)]
-        args: simulate::Args,
+        args: simulate::SimulateArgs,
         /// Print JSON.
         #[arg(long)]
         json: bool,
@@ -125,7 +126,7 @@ enum Command {
     /// residual (‖P^m(x) − x‖∞/‖x‖∞, ≤ 1e-12), iterations, and the parameters.
     Orbit {
         #[command(flatten)]
-        args: orbit::Args,
+        args: orbit::OrbitArgs,
         /// Print JSON.
         #[arg(long)]
         json: bool,
@@ -142,7 +143,7 @@ enum Command {
     /// (why the branch stops) and parent (the branch it doubled from).
     Continue {
         #[command(flatten)]
-        args: continue_cmd::Args,
+        args: continue_cmd::ContinueArgs,
         /// Print JSON.
         #[arg(long)]
         json: bool,
@@ -154,7 +155,7 @@ enum Command {
     /// book's 128 × 128 atlas takes about a minute on two cores.
     Atlas {
         #[command(flatten)]
-        args: atlas_cmd::Args,
+        args: atlas_cmd::AtlasArgs,
     },
     /// Merge the shards written by `cantilever atlas` into the atlas scene's output
     /// (plot.svg, table.md, decades.md, data.json, key_numbers.json, verdict.json), as
@@ -167,6 +168,26 @@ enum Command {
         /// Output directory (default: out/atlas).
         #[arg(long)]
         out: Option<PathBuf>,
+    },
+    /// Which key numbers moved between two runs, each judged against its uncertainty: a
+    /// number that moved by more than the two values' uncertainties and roundings together
+    /// is a different result; one that moved by less is within what the method resolves.
+    /// Exit status 1 when anything moved beyond its uncertainty (or an integer or label
+    /// changed, or a unit), 0 otherwise, 2 on bad input.
+    ///
+    /// OLD and NEW may each be a key_numbers.json, a scene's output folder (`cantilever
+    /// scene NAME --out DIR`), a folder of scene folders (out/, book/src/generated/), an
+    /// insta snapshot or a folder of them, or `published`: the committed published numbers
+    /// (tests/snapshots/published__book-*.snap) this build was made with.
+    Diff {
+        /// The earlier numbers.
+        old: PathBuf,
+        /// The later numbers.
+        new: PathBuf,
+        /// Print JSON: every row (scene, key, old, new, change, moved, allowed) and
+        /// beyond_uncertainty.
+        #[arg(long)]
+        json: bool,
     },
     /// Regenerate every scene and build the HTML book (needs the `book` feature).
     Book {
@@ -234,12 +255,15 @@ fn main() -> ExitCode {
             errln!("error: {e}");
             ExitCode::from(1)
         }
+        Err(Failure::Differs) => ExitCode::from(1),
     }
 }
 
 enum Failure {
     BadInput(ParameterError),
     Other(String),
+    /// A comparison found a difference (its report is already printed): exit 1, no message.
+    Differs,
 }
 
 impl From<ParameterError> for Failure {
@@ -373,6 +397,20 @@ fn run(cli: Cli) -> Result<(), Failure> {
             errln!("wrote {}", dir.display());
             Ok(())
         }
+        Command::Diff { old, new, json } => {
+            let d = diff_cmd::run(&old, &new)?;
+            if json {
+                let doc = impacting_cantilever::diff::to_json(&d);
+                outln!("{}", serde_json::to_string_pretty(&doc).unwrap_or_default());
+            } else {
+                emit(&impacting_cantilever::diff::to_text(&d));
+            }
+            if d.any_beyond() {
+                Err(Failure::Differs)
+            } else {
+                Ok(())
+            }
+        }
         Command::Book { book_dir } => book_command(&book_dir),
     }
 }
@@ -455,4 +493,16 @@ fn book_command(_: &std::path::Path) -> Result<(), Failure> {
         "this binary was built without the `book` feature; run: cargo run --release --features book -- book"
             .into(),
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    /// clap checks its argument graph (unique group names, flag clashes) only in debug
+    /// builds; this runs those checks for every subcommand. It is a no-op in release, so
+    /// the test command runs it in the debug profile too.
+    #[test]
+    fn the_command_line_definition_is_consistent() {
+        use clap::CommandFactory;
+        super::Cli::command().debug_assert();
+    }
 }

@@ -9,9 +9,9 @@ use impacting_cantilever::sim::{Simulator, Strobe};
 
 /// The command's inputs: the model and start of `simulate`, and the orbit's period.
 #[derive(Debug, Clone, clap::Args)]
-pub struct Args {
+pub struct OrbitArgs {
     #[command(flatten)]
-    pub model: simulate::Args,
+    pub model: simulate::SimulateArgs,
     /// The orbit's period m in forcing periods (1 to 64). Without it, m is read from the
     /// stroboscopic samples of the recorded window (the smallest m whose samples repeat to
     /// 1e-3), so the start needs enough transient to come near the orbit.
@@ -40,7 +40,7 @@ pub struct Report {
 }
 
 /// Finds the orbit.
-pub fn run(args: &Args) -> Result<Report, Error> {
+pub fn run(args: &OrbitArgs) -> Result<Report, Error> {
     let a = &args.model;
     if a.model == ModelKind::Rigid {
         return Err(ParameterError::new(

@@ -77,7 +77,7 @@ pub enum DampingReading {
 
 /// The command's inputs (also its command-line flags).
 #[derive(Debug, Clone, clap::Args)]
-pub struct Args {
+pub struct SimulateArgs {
     /// N, the number of modes (1 to 400).
     #[arg(long)]
     pub modes: usize,
@@ -179,7 +179,7 @@ fn range(name: &str, value: f64, (lo, hi): (f64, f64)) -> Result<f64, ParameterE
 }
 
 /// Validates every input against the ranges the method supports (before any work).
-pub fn validate(args: &Args) -> Result<(), ParameterError> {
+pub fn validate(args: &SimulateArgs) -> Result<(), ParameterError> {
     error::count_in_range("--modes (N)", args.modes, galerkin::MAX_MODES)?;
     range(
         "--stop-stiffness (k/k₁)",
@@ -231,7 +231,7 @@ pub fn validate(args: &Args) -> Result<(), ParameterError> {
     Ok(())
 }
 
-fn forcing(args: &Args) -> Result<Forcing, ParameterError> {
+fn forcing(args: &SimulateArgs) -> Result<Forcing, ParameterError> {
     let omega = args.omega * first_frequency();
     let profile = match args.forcing.as_str() {
         "unit" => SpatialProfile::UnitTipAtResonance,
@@ -248,7 +248,7 @@ fn forcing(args: &Args) -> Result<Forcing, ParameterError> {
 }
 
 /// The model the options describe (validated), without the law or the start state.
-pub fn model(args: &Args) -> Result<GalerkinModel, ParameterError> {
+pub fn model(args: &SimulateArgs) -> Result<GalerkinModel, ParameterError> {
     validate(args)?;
     let mut params = GalerkinParams::new(args.modes, args.stop_stiffness * first_modal_stiffness())
         .with_gap(args.gap)
@@ -262,7 +262,7 @@ pub fn model(args: &Args) -> Result<GalerkinModel, ParameterError> {
 }
 
 /// The model, restitution law and start state the options describe.
-pub fn setup(args: &Args) -> Result<Setup, ParameterError> {
+pub fn setup(args: &SimulateArgs) -> Result<Setup, ParameterError> {
     let model = model(args)?;
     let n = args.modes;
     let law = match args.model {

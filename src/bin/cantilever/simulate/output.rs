@@ -3,7 +3,7 @@
 //! atomically).
 
 use super::run::Report;
-use super::{Args, ModelKind};
+use super::{ModelKind, SimulateArgs};
 use impacting_cantilever::error::{Error, ParameterError};
 use impacting_cantilever::galerkin::{first_frequency, GalerkinModel};
 use impacting_cantilever::orbit::{random_state, SplitMix64};
@@ -32,7 +32,7 @@ fn numbers(flag: &str, v: &Value, what: &str) -> Result<Vec<f64>, ParameterError
 
 /// The initial state and a description of where it came from.
 pub fn initial_state(
-    args: &Args,
+    args: &SimulateArgs,
     model: &GalerkinModel,
 ) -> Result<(DVector<f64>, String), ParameterError> {
     let n = model.modes();
@@ -92,7 +92,7 @@ pub fn initial_state(
 }
 
 /// Fails early (exit 2) when an output file cannot be written, before any work.
-pub fn check_writable(args: &Args) -> Result<(), ParameterError> {
+pub fn check_writable(args: &SimulateArgs) -> Result<(), ParameterError> {
     for (flag, path) in [
         ("--final-state", &args.final_state),
         ("--dense", &args.dense),

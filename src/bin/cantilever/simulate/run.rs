@@ -2,7 +2,7 @@
 //! the transient, one for the window, with a progress ticker that only watches), the rigid
 //! model through its impacts in chunks of periods.
 
-use super::{output, Args, ModelKind, Setup};
+use super::{output, ModelKind, Setup, SimulateArgs};
 use crate::progress::Bars;
 use impacting_cantilever::error::Error;
 use impacting_cantilever::galerkin::Region;
@@ -68,7 +68,7 @@ pub type DenseRow = (f64, bool, f64, f64, Vec<f64>);
 /// What the command reports.
 pub struct Report {
     /// The inputs.
-    pub args: Args,
+    pub args: SimulateArgs,
     /// The model, its law and its start.
     pub setup: Setup,
     /// Events of the recorded window.
@@ -157,7 +157,7 @@ impl Observer for EventLog {
 }
 
 /// Runs the command.
-pub fn run(args: &Args) -> Result<Report, Error> {
+pub fn run(args: &SimulateArgs) -> Result<Report, Error> {
     let setup = super::setup(args)?;
     output::check_writable(args)?;
     let started = Instant::now();
@@ -172,7 +172,10 @@ pub fn run(args: &Args) -> Result<Report, Error> {
     Ok(report)
 }
 
-fn period_search(args: &Args, strobe: &[DVector<f64>]) -> (Option<u64>, Option<f64>, usize) {
+fn period_search(
+    args: &SimulateArgs,
+    strobe: &[DVector<f64>],
+) -> (Option<u64>, Option<f64>, usize) {
     let max_m = args.max_period.min(args.record as usize / 2);
     if strobe.len() < 2 || max_m == 0 {
         return (None, None, max_m);
@@ -181,7 +184,7 @@ fn period_search(args: &Args, strobe: &[DVector<f64>]) -> (Option<u64>, Option<f
     (m, r.is_finite().then_some(r), max_m)
 }
 
-fn compliant(args: &Args, setup: Setup, bars: &Bars) -> Result<Report, Error> {
+fn compliant(args: &SimulateArgs, setup: Setup, bars: &Bars) -> Result<Report, Error> {
     let sim = Simulator::new(setup.model.clone())?;
     let period = sim.period();
     let task = bars.task("simulate: periods", args.periods + args.record);
@@ -267,7 +270,7 @@ fn compliant(args: &Args, setup: Setup, bars: &Bars) -> Result<Report, Error> {
     })
 }
 
-fn rigid(args: &Args, setup: Setup, bars: &Bars) -> Result<Report, Error> {
+fn rigid(args: &SimulateArgs, setup: Setup, bars: &Bars) -> Result<Report, Error> {
     let sim = Simulator::new(setup.model.clone())?;
     let period = sim.period();
     let condition = sim.flow(Region::Free).condition();

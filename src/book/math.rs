@@ -1,0 +1,191 @@
+//! LaTeX in the chapters (`$…$`, `$$…$$`) to MathML at build time, so the book renders
+//! math offline without a script.
+
+use anyhow::{bail, Result};
+use mdbook_preprocessor::book::{Book, BookItem};
+use mdbook_preprocessor::{Preprocessor, PreprocessorContext};
+use pulldown_latex::config::DisplayMode;
+use pulldown_latex::{push_mathml, Parser, RenderConfig, Storage};
+
+/// Converts `$…$` (inline) and `$$…$$` (display) to MathML, outside code.
+pub struct MathPreprocessor;
+
+impl Preprocessor for MathPreprocessor {
+    fn name(&self) -> &str {
+        "mathml"
+    }
+
+    fn run(
+        &self,
+        _: &PreprocessorContext,
+        mut book: Book,
+    ) -> mdbook_preprocessor::errors::Result<Book> {
+        let mut failure = None;
+        book.for_each_mut(|item| {
+            if let BookItem::Chapter(ch) = item {
+                match convert_math(&ch.content) {
+                    Ok(c) => ch.content = c,
+                    Err(e) => {
+                        failure.get_or_insert(anyhow::anyhow!("chapter '{}': {e}", ch.name));
+                    }
+                }
+            }
+        });
+        match failure {
+            Some(e) => Err(e),
+            None => Ok(book),
+        }
+    }
+}
+
+/// One LaTeX fragment to MathML; parse errors are errors (the book must not ship them).
+pub fn latex_to_mathml(tex: &str, display: bool) -> Result<String> {
+    let storage = Storage::new();
+    let events: Vec<_> = Parser::new(tex, &storage).collect();
+    if let Some(Err(e)) = events.iter().find(|e| e.is_err()) {
+        bail!("cannot parse LaTeX `{tex}`: {e}");
+    }
+    let config = RenderConfig {
+        display_mode: if display {
+            DisplayMode::Block
+        } else {
+            DisplayMode::Inline
+        },
+        ..Default::default()
+    };
+    let mut out = String::new();
+    push_mathml(&mut out, events.into_iter(), config)?;
+    // The MathML sits inside markdown: hide characters markdown would act on, and repair
+    // pulldown-latex 0.8's `stretchy="true"minsize=…` (no space between attributes after
+    // \bigl and friends), which markdown would not recognise as a tag.
+    let mut safe = String::with_capacity(out.len());
+    let chars: Vec<char> = out.chars().collect();
+    for (i, &c) in chars.iter().enumerate() {
+        let closing_quote = c == '"' && i > 0 && chars[i - 1] != '=';
+        if closing_quote && chars.get(i + 1).is_some_and(|n| n.is_ascii_alphabetic()) {
+            safe.push_str("\" ");
+            continue;
+        }
+        match c {
+            '*' | '_' | '\\' | '`' | '[' | ']' | '$' | '~' | '|' | '\n' => {
+                if c != '\n' {
+                    safe.push_str(&format!("&#{};", c as u32));
+                }
+            }
+            c => safe.push(c),
+        }
+    }
+    Ok(safe)
+}
+
+/// Replaces math delimiters in markdown, leaving fenced code and inline code alone.
+/// `\$` is a literal dollar sign. Math may continue across line breaks (prose is wrapped),
+/// but not across a blank line.
+pub fn convert_math(markdown: &str) -> Result<String> {
+    let mut out = String::with_capacity(markdown.len());
+    let mut in_fence = false;
+    // open math: its text so far, and whether it is display math
+    let mut open: Option<(String, bool)> = None;
+    for line in markdown.split_inclusive('\n') {
+        if open.is_none() && line.trim_start().starts_with("```") {
+            in_fence = !in_fence;
+            out.push_str(line);
+            continue;
+        }
+        if in_fence {
+            out.push_str(line);
+            continue;
+        }
+        if let Some((buf, _)) = &open {
+            if line.trim().is_empty() {
+                bail!("math left open at a blank line: ${}", buf.trim());
+            }
+        }
+        let mut rest = line;
+        while !rest.is_empty() {
+            if let Some((buf, display)) = open.as_mut() {
+                let delimiter = if *display { "$$" } else { "$" };
+                match rest.find(delimiter) {
+                    Some(end) => {
+                        buf.push_str(&rest[..end]);
+                        let tex = buf.split_whitespace().collect::<Vec<_>>().join(" ");
+                        out.push_str(&latex_to_mathml(&tex, *display)?);
+                        rest = &rest[end + delimiter.len()..];
+                        open = None;
+                    }
+                    None => {
+                        buf.push_str(rest);
+                        rest = "";
+                    }
+                }
+                continue;
+            }
+            let Some(pos) = rest.find(['$', '`', '\\']) else {
+                out.push_str(rest);
+                break;
+            };
+            out.push_str(&rest[..pos]);
+            let tail = &rest[pos..];
+            if let Some(after) = tail.strip_prefix("\\$") {
+                out.push('$');
+                rest = after;
+            } else if let Some(after) = tail.strip_prefix('\\') {
+                out.push('\\');
+                rest = after;
+            } else if let Some(code) = tail.strip_prefix('`') {
+                let end = code.find('`').map_or(tail.len(), |e| e + 2);
+                out.push_str(&tail[..end]);
+                rest = &tail[end..];
+            } else if let Some(after) = tail.strip_prefix("$$") {
+                open = Some((String::new(), true));
+                rest = after;
+            } else {
+                open = Some((String::new(), false));
+                rest = &tail[1..];
+            }
+        }
+    }
+    if let Some((buf, _)) = open {
+        bail!("unclosed math at the end of the chapter: ${}", buf.trim());
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn math_becomes_mathml_and_code_is_left_alone() {
+        let md = "Let $k_j = (\\beta_j^-)^4$ and `$x$`.\n```\n$y$\n```\n$$\nK^+ = K^- + k\\mathbf{1}\\mathbf{1}^T\n$$\nCost \\$5.\n";
+        let html = convert_math(md).unwrap();
+        assert!(html.contains("<math"));
+        assert!(html.contains("display=\"block\""));
+        assert!(html.contains("`$x$`"));
+        assert!(html.contains("\n$y$\n"));
+        assert!(html.contains("Cost $5."));
+        assert!(!html.contains("k_j"));
+    }
+
+    #[test]
+    fn delimiter_sizes_give_well_formed_attributes() {
+        let html = latex_to_mathml("\\bigl(x\\bigr)", false).unwrap();
+        assert!(
+            !html.contains("\"minsize") && !html.contains("\"maxsize"),
+            "{html}"
+        );
+    }
+
+    #[test]
+    fn bad_latex_is_an_error() {
+        assert!(convert_math("$\\frac{1}$").is_err());
+        assert!(convert_math("$x").is_err());
+        assert!(convert_math("$x\n\ny$").is_err(), "not across paragraphs");
+    }
+
+    #[test]
+    fn inline_math_may_wrap_across_lines() {
+        let html = convert_math("a sum $g(s) = x +\n y$ here\n").unwrap();
+        assert!(html.contains("<math") && html.contains(" here"));
+    }
+}
