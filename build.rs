@@ -179,10 +179,14 @@ fn fingerprints(toolchain: &str) -> String {
     }
     let lock = std::fs::read("Cargo.lock").unwrap_or_default();
     let mut out = String::from(
-        "/// (scene module, fingerprint of every source its numbers can depend on).\n\
+        "/// (scene module, or `book`; fingerprint of every source its numbers can depend on).\n\
          pub const SCENE_FINGERPRINTS: &[(&str, &str)] = &[\n",
     );
-    for unit in texts.keys().filter(|u| u.starts_with("scenes::")) {
+    // each scene, and the book (whose worked example recomputes a scene)
+    for unit in texts
+        .keys()
+        .filter(|u| u.starts_with("scenes::") || *u == "book")
+    {
         // the closure of the units this scene names
         let mut seen = BTreeSet::new();
         let mut todo = vec![unit.clone()];

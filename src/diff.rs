@@ -119,6 +119,12 @@ pub struct Row {
     /// What changed.
     #[serde(flatten)]
     pub change: Change,
+    /// The old value itself (for renderings other than the printed one).
+    #[serde(skip)]
+    pub old_value: Option<KeyValue>,
+    /// The new value itself.
+    #[serde(skip)]
+    pub new_value: Option<KeyValue>,
 }
 
 /// The comparison of two sets.
@@ -184,6 +190,8 @@ pub fn compare_numbers(scene: &str, old: &KeyNumbers, new: &KeyNumbers) -> Vec<R
         old: o.map(ToString::to_string),
         new: n.map(ToString::to_string),
         change,
+        old_value: o.cloned(),
+        new_value: n.cloned(),
     };
     let mut rows: Vec<Row> = new
         .0
@@ -272,7 +280,7 @@ pub fn compare_values(o: &KeyValue, n: &KeyValue) -> Change {
 }
 
 /// `moved / allowed` as a factor for a reader ("0.3×", "2 × 10⁶×").
-fn factor(moved: f64, allowed: f64) -> String {
+pub fn factor(moved: f64, allowed: f64) -> String {
     if allowed <= 0.0 {
         return "—".into();
     }

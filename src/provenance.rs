@@ -80,7 +80,8 @@ impl Provenance {
 /// `src/scenes/`) in this build: a 128-bit hash of the sources its numbers can depend on,
 /// computed by `build.rs` from the `crate::` paths each file names. It is conservative (a
 /// module named only in a comment still counts), so an unchanged fingerprint means no
-/// source the scene can reach changed.
+/// source the scene can reach changed. `"book"` gives the book builder's own (its worked
+/// example recomputes a scene).
 pub fn scene_fingerprint(module: &str) -> Option<&'static str> {
     SCENE_FINGERPRINTS
         .iter()

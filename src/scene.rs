@@ -10,7 +10,7 @@ use crate::error::Error;
 use crate::provenance::Provenance;
 use crate::render::RenderError;
 use crate::report::KeyNumbers;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::path::Path;
 
 /// How much work a scene does: the book's full resolution, or a reduced one for tests.
@@ -53,7 +53,7 @@ impl Progress for Silent {
 }
 
 /// How a result of the paper fared.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub enum Outcome {
     /// Our verified number agrees with the paper's to its printed precision, or the claim
     /// holds in every case checked.
@@ -81,7 +81,7 @@ impl std::fmt::Display for Outcome {
 }
 
 /// A scene's verdict on the paper's claim, computed from its data.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Verdict {
     /// The outcome.
     pub outcome: Outcome,

@@ -494,3 +494,14 @@ fn atlas_shards_merge_into_the_unsharded_atlas() {
     assert!(err.contains("row 1 missing"), "{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+#[cfg(feature = "book")]
+fn book_only_names_scenes_of_the_registry() {
+    let (code, _, err) = cantilever(&["book", "--only", "fig4,fig99"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.starts_with("error: invalid --only: got fig99; allowed: one of spectrum,"),
+        "{err}"
+    );
+}

@@ -117,8 +117,8 @@ impl CellSearch<'_> {
 
     /// The stable orbit start s settles on, if its period is at most max_period. The
     /// transient runs in thirds: after each, the strobe over 2·max_m periods proposes a
-    /// period m, and Newton is tried once the start is within [`SETTLED`] of a period-m
-    /// orbit (after the last third, within [`NEAR_PERIODIC`]).
+    /// period m, and Newton is tried once the start is within `SETTLED` of a period-m
+    /// orbit (after the last third, within `NEAR_PERIODIC`).
     pub fn from_start(&self, s: usize) -> Result<Option<PeriodicOrbit>, Error> {
         let mut x = self.start(s);
         let chunk = self.transient.div_ceil(3);

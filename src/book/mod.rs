@@ -9,9 +9,12 @@
 
 mod math;
 mod numbers;
+pub mod reuse;
+mod worked;
 
 pub use math::{convert_math, latex_to_mathml, MathPreprocessor};
 pub use numbers::NumbersPreprocessor;
+pub use reuse::SceneNumbers;
 
 use crate::provenance::Provenance;
 use crate::scene::{self, Entry, Progress, Resolution, SceneOutput};
@@ -22,11 +25,17 @@ use std::collections::HashMap;
 use std::path::Path;
 use std::time::Instant;
 
-/// How long a build took, for the command line to report (the library prints nothing).
+/// How long a build took and what it reused, for the command line to report (the library
+/// prints nothing).
 #[derive(Debug, Clone)]
 pub struct BuildReport {
-    /// Each scene's wall time (s), in the book's order.
+    /// Each computed scene's wall time (s), in the book's order.
     pub scene_seconds: Vec<(String, f64)>,
+    /// Scenes whose previous output was current and reused, with the date it was computed.
+    pub reused: Vec<(String, String)>,
+    /// Scenes not asked for but recomputed, with the reason their previous output was not
+    /// current.
+    pub refreshed: Vec<(String, String)>,
     /// mdBook's own time (s).
     pub book_seconds: f64,
     /// The whole build (s).
@@ -39,6 +48,19 @@ pub struct BuildReport {
 /// The book uses [`Resolution::Book`]; the test suite builds it at [`Resolution::Test`]
 /// to check the pipeline without the full sweeps.
 pub fn build(root: &Path, resolution: Resolution, progress: &dyn Progress) -> Result<BuildReport> {
+    build_only(root, resolution, None, progress)
+}
+
+/// [`build`], recomputing only the scenes named in `only` (all when `None`): every other
+/// scene's previous output in `generated/` is reused when it is current (same fingerprint
+/// and resolution, see [`reuse`]) and recomputed otherwise, so the book never mixes numbers
+/// of code that has since changed. Unknown names are an error.
+pub fn build_only(
+    root: &Path,
+    resolution: Resolution,
+    only: Option<&[String]>,
+    progress: &dyn Progress,
+) -> Result<BuildReport> {
     if !root.join("book.toml").exists() {
         bail!(
             "no book.toml in '{}': run from the repository root or pass --book-dir",
@@ -48,7 +70,39 @@ pub fn build(root: &Path, resolution: Resolution, progress: &dyn Progress) -> Re
     let started = Instant::now();
     let generated = root.join("src").join("generated");
     let scenes = crate::scenes::all();
-    let task = progress.task("scenes", scenes.len() as u64);
+    if let Some(names) = only {
+        for name in names {
+            scene::find(name)?;
+        }
+    }
+    // what each scene's page will use: a current previous output, or a fresh run
+    let mut reused = Vec::new();
+    let mut refreshed = Vec::new();
+    let plan: Vec<Option<SceneNumbers>> = scenes
+        .iter()
+        .map(|spec| {
+            let asked = only.is_none_or(|n| n.iter().any(|x| x == spec.name()));
+            if asked {
+                return None;
+            }
+            match reuse::previous(*spec, &generated.join(spec.name()), resolution) {
+                Ok(prev) => {
+                    reused.push((spec.name().to_string(), prev.provenance.date.clone()));
+                    Some(prev)
+                }
+                Err(why) => {
+                    refreshed.push((spec.name().to_string(), why));
+                    None
+                }
+            }
+        })
+        .collect();
+    let fresh = scenes
+        .iter()
+        .zip(&plan)
+        .filter(|(_, p)| p.is_none())
+        .count();
+    let task = progress.task("scenes", fresh as u64);
     let run_one = |spec: &&dyn Entry| -> Result<(SceneOutput, f64)> {
         let t = Instant::now();
         let out = spec
@@ -59,44 +113,68 @@ pub fn build(root: &Path, resolution: Resolution, progress: &dyn Progress) -> Re
         Ok((out, t.elapsed().as_secs_f64()))
     };
     // scenes that time themselves run alone, after the others (both cores otherwise)
+    let todo = |spec: &&dyn Entry, p: &Option<SceneNumbers>| p.is_none() && !spec.timed();
     let mut runs: Vec<Option<Result<(SceneOutput, f64)>>> = scenes
         .par_iter()
-        .map(|spec| (!spec.timed()).then(|| run_one(spec)))
+        .zip(&plan)
+        .map(|(spec, p)| todo(spec, p).then(|| run_one(spec)))
         .collect();
-    for (spec, run) in scenes.iter().zip(runs.iter_mut()) {
-        if spec.timed() {
+    for ((spec, run), p) in scenes.iter().zip(runs.iter_mut()).zip(&plan) {
+        if p.is_none() && spec.timed() {
             *run = Some(run_one(spec));
         }
     }
-    let runs: Vec<Result<(SceneOutput, f64)>> = runs.into_iter().flatten().collect();
     drop(task);
-    let mut outputs = Vec::new();
+    let mut numbers = Vec::new();
     let mut scene_seconds = Vec::new();
-    for (spec, run) in scenes.iter().zip(runs) {
-        let (out, secs) = run?;
-        scene_seconds.push((spec.name().to_string(), secs));
-        outputs.push(out);
+    let mut fig4 = None;
+    for ((spec, run), p) in scenes.iter().zip(runs).zip(plan) {
+        match (run, p) {
+            (Some(run), _) => {
+                let (out, secs) = run?;
+                scene_seconds.push((spec.name().to_string(), secs));
+                numbers.push(SceneNumbers::from(&out));
+            }
+            (None, Some(prev)) => numbers.push(prev),
+            (None, None) => bail!("scene {} was neither run nor reused", spec.name()),
+        }
+        if spec.name() == "fig4" {
+            fig4 = numbers.last().cloned();
+        }
     }
+    let fig4 = fig4.context("the registry has no fig4 scene")?;
+    worked::write(
+        &generated.join(worked::DIR),
+        &fig4,
+        &scene_seconds,
+        resolution,
+        progress,
+    )?;
     scene::write_atomically(
         &generated.join("summary.md"),
-        &summary_table(scenes, &outputs, &|chapter| chapter_title(root, chapter)),
+        &summary_table(scenes, &numbers, &|chapter| chapter_title(root, chapter)),
     )?;
-    let provenance = outputs
+    let provenance = numbers
         .first()
         .map(|o| o.provenance.clone())
         .unwrap_or_else(|| Provenance::now("book"));
     scene::write_atomically(&generated.join("citation.md"), &citation(&provenance))?;
     let t = Instant::now();
-    let numbers = NumbersPreprocessor {
+    let numbers_pre = NumbersPreprocessor {
         numbers: scenes
             .iter()
-            .zip(&outputs)
-            .map(|(spec, out)| (spec.name().to_string(), out.key_numbers.clone()))
+            .zip(&numbers)
+            .map(|(spec, n)| (spec.name().to_string(), n.key_numbers.clone()))
             .collect(),
         verdicts: scenes
             .iter()
-            .zip(&outputs)
-            .map(|(spec, out)| (spec.name().to_string(), out.verdict.clone()))
+            .zip(&numbers)
+            .map(|(spec, n)| (spec.name().to_string(), n.verdict.clone()))
+            .collect(),
+        provenances: scenes
+            .iter()
+            .zip(&numbers)
+            .map(|(spec, n)| (spec.name().to_string(), n.provenance.clone()))
             .collect(),
         data_sizes: scenes
             .iter()
@@ -115,7 +193,7 @@ pub fn build(root: &Path, resolution: Resolution, progress: &dyn Progress) -> Re
         provenance,
     };
     let mut book = MDBook::load(root).context("loading the book")?;
-    book.with_preprocessor(numbers);
+    book.with_preprocessor(numbers_pre);
     book.with_preprocessor(MathPreprocessor);
     book.build().context("building the book")?;
     // The stylesheet refers to its fonts by relative path; mdBook copies only the CSS.
@@ -125,6 +203,8 @@ pub fn build(root: &Path, resolution: Resolution, progress: &dyn Progress) -> Re
     )?;
     Ok(BuildReport {
         scene_seconds,
+        reused,
+        refreshed,
         book_seconds: t.elapsed().as_secs_f64(),
         total_seconds: started.elapsed().as_secs_f64(),
         index: root.join("build").join("index.html"),
@@ -136,7 +216,7 @@ pub fn build(root: &Path, resolution: Resolution, progress: &dyn Progress) -> Re
 /// data. One block per result (a table this wide would hide columns).
 pub fn summary_table(
     scenes: &[&dyn Entry],
-    outputs: &[SceneOutput],
+    outputs: &[SceneNumbers],
     title: &dyn Fn(&str) -> Option<String>,
 ) -> String {
     let mut s = String::new();

@@ -13,8 +13,8 @@
 //!   other N − 1 directions, [`sticking`]); it is released at the certified time the force
 //!   would turn to pulling, and flies on;
 //! - that limit of infinitely many impacts exists only for a law that leaves the velocity
-//!   orthogonal to φ(1) unchanged (Newton's law at the tip, [R]_IR; any law for N = 1).
-//!   Under another law ([R]_N, [R]_C with N > 1) the run **stops** at t_∞ with
+//!   orthogonal to φ(1) unchanged (Newton's law at the tip, \[R\]_IR; any law for N = 1).
+//!   Under another law (\[R\]_N, \[R\]_C with N > 1) the run **stops** at t_∞ with
 //!   [`Outcome::Chatter`];
 //! - a hard cap of `max_impacts` impacts per run ends it with [`Outcome::ImpactLimit`].
 
@@ -70,7 +70,7 @@ pub enum Outcome {
     /// Reached the requested end.
     Completed,
     /// Chattering under a law whose limit does not leave the tangential velocity alone
-    /// (N > 1 with [R]_N or [R]_C): stopped at the accumulation time.
+    /// (N > 1 with \[R\]_N or \[R\]_C): stopped at the accumulation time.
     Chatter(f64),
     /// More than `max_impacts` impacts.
     ImpactLimit,
@@ -184,7 +184,7 @@ impl RigidImpact {
             .get_or_init(|| Sticking::new(self.sim.model()))
     }
 
-    /// Whether the law leaves every velocity orthogonal to φ(1) unchanged (−[R]v = v for
+    /// Whether the law leaves every velocity orthogonal to φ(1) unchanged (−\[R\]v = v for
     /// φ(1)ᵀv = 0, to round-off): then a chatter's limit is the constrained state, and the
     /// model can stick.
     pub fn can_stick(&self) -> bool {

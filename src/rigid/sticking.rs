@@ -22,7 +22,7 @@
 //! onto the constraint orthogonally in the kinetic-energy metric (M = I in modal
 //! coordinates): tip at d₀, tip velocity zero, the rest of η̇ unchanged. That is the limit
 //! of infinitely many impacts only for a law that leaves the velocity orthogonal to φ
-//! unchanged — Newton's law at the tip, the impulse-response [R]_IR; [`RigidImpact`]
+//! unchanged — Newton's law at the tip, the impulse-response \[R\]_IR; [`RigidImpact`]
 //! refuses to stick under the other laws.
 //!
 //! [`RigidImpact`]: super::RigidImpact

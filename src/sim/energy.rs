@@ -224,7 +224,7 @@ fn complex2(m: [[f64; 2]; 2], transpose: bool) -> DMatrix<Complex64> {
 /// cos(θ₀ + ωs), all in closed form; e^{(μ_m+μ_n)S} is the product of the two factors
 /// e^{μS}, so a segment costs O(N²) products and O(N) exponentials. A block's terms are
 /// integrals of e^{Bᵀs}Ge^{μs} and e^{B_aᵀs}Ge^{B_b s}: small Sylvester-type integrals
-/// ([`matrix_integral`]).
+/// (`matrix_integral`).
 pub fn segment_energy(
     flow: &RegionFlow,
     y: &DVector<f64>,

@@ -3,6 +3,10 @@
 //! Every bad input exits with status 2 and one line naming the parameter and what is
 //! allowed.
 
+// The doc comments here are the `--help` text, where `[R]_N` is the paper's notation for a
+// restitution matrix, not a link.
+#![allow(rustdoc::broken_intra_doc_links)]
+
 mod atlas_cmd;
 mod cite;
 mod continue_cmd;
@@ -194,6 +198,13 @@ enum Command {
         /// The book's root (holding book.toml).
         #[arg(long, default_value = "book")]
         book_dir: PathBuf,
+        /// Recompute only these scenes (comma-separated, e.g. fig6,fig9) and reuse every
+        /// other scene's previous output in the book's generated/ folder when it is current:
+        /// computed at this resolution by code whose sources the scene can reach are
+        /// unchanged (its fingerprint). A scene whose output is not current is recomputed,
+        /// and the build says which and why.
+        #[arg(long, value_delimiter = ',')]
+        only: Option<Vec<String>>,
     },
 }
 
@@ -411,7 +422,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 Ok(())
             }
         }
-        Command::Book { book_dir } => book_command(&book_dir),
+        Command::Book { book_dir, only } => book_command(&book_dir, only.as_deref()),
     }
 }
 
@@ -471,12 +482,28 @@ fn modes_command(modes: usize, k_over_k1: f64, json: bool) -> Result<(), Failure
 }
 
 #[cfg(feature = "book")]
-fn book_command(book_dir: &std::path::Path) -> Result<(), Failure> {
-    let report =
-        impacting_cantilever::book::build(book_dir, Resolution::Book, &progress::Bars::default())
-            .map_err(|e| Failure::Other(format!("{e:#}")))?;
+fn book_command(book_dir: &std::path::Path, only: Option<&[String]>) -> Result<(), Failure> {
+    for name in only.into_iter().flatten() {
+        scene::find(name).map_err(|mut e| {
+            e.name = "--only".into();
+            e
+        })?;
+    }
+    let report = impacting_cantilever::book::build_only(
+        book_dir,
+        Resolution::Book,
+        only,
+        &progress::Bars::default(),
+    )
+    .map_err(|e| Failure::Other(format!("{e:#}")))?;
     for (name, secs) in &report.scene_seconds {
-        errln!("scene {name:<15} {secs:>8.2} s");
+        errln!("scene {name:<18} {secs:>8.2} s");
+    }
+    for (name, date) in &report.reused {
+        errln!("scene {name:<18}   reused (current output of {date})");
+    }
+    for (name, why) in &report.refreshed {
+        errln!("scene {name:<18}   recomputed: {why}");
     }
     errln!("book built in {:.2} s", report.book_seconds);
     errln!(
@@ -488,7 +515,7 @@ fn book_command(book_dir: &std::path::Path) -> Result<(), Failure> {
 }
 
 #[cfg(not(feature = "book"))]
-fn book_command(_: &std::path::Path) -> Result<(), Failure> {
+fn book_command(_: &std::path::Path, _: Option<&[String]>) -> Result<(), Failure> {
     Err(Failure::Other(
         "this binary was built without the `book` feature; run: cargo run --release --features book -- book"
             .into(),

@@ -3,8 +3,8 @@
 //!
 //! - r_e of eq (19) against the exact one-mode return ratio e^{−απ/ω_d}: the error's
 //!   observed order in ε (the first-order theory's remainder is O(ε²));
-//! - the kinetic energy an impact law can create: max |−[R]v|²/|v|² over deterministic test
-//!   velocities, for [R]_IR, [R]_N and [R]_C at r = 1 (N = 5);
+//! - the kinetic energy an impact law can create: max |−\[R\]v|²/|v|² over deterministic test
+//!   velocities, for \[R\]_IR, \[R\]_N and \[R\]_C at r = 1 (N = 5);
 //! - Nordmark: the compliant N = 1 model's (1,1) impact velocity against the rigid model's
 //!   (Newton's law, r = 1) as k → ∞, at the Figure 4 damping and forcing, at
 //!   ω = 1.5(β₁⁻)² (fast approach) and at the paper's ω = 2(β₁⁻)² (slow).
@@ -88,7 +88,7 @@ pub struct RestitutionData {
     pub re_error: Vec<f64>,
     /// Its observed order and standard error over ε ≤ 1e-3.
     pub re_order: (f64, f64),
-    /// max |−[R]v|²/|v|² over the test velocities at r = 1, N = 5: IR, N, C.
+    /// max |−\[R\]v|²/|v|² over the test velocities at r = 1, N = 5: IR, N, C.
     pub energy_ratio: [f64; 3],
     /// The Nordmark study per ω.
     pub nordmark: Vec<Nordmark>,
