@@ -3,7 +3,7 @@
 //! unit) with the committed snapshot `tests/snapshots/published__book-<scene>.snap`. A change
 //! that moves a published number fails that scene's trial with a diff of the lines that moved.
 //!
-//! This is the slow tier (about two minutes on two cores, most of it the atlas). It runs with
+//! This is the slow tier (about two minutes on two cores, half of it the atlas). It runs with
 //! `--all-features` (feature `published`), as the README's test command does; a plain
 //! `cargo test` lists the trials as ignored. Name scenes to run only those, in any profile:
 //!
@@ -38,7 +38,11 @@ fn check(spec: &'static dyn Entry) -> Result<(), Failed> {
 }
 
 fn main() {
-    let args = Arguments::from_args();
+    let mut args = Arguments::from_args();
+    // one trial at a time unless told otherwise: each scene already spreads its sweep over
+    // every core (rayon), and two at once only contend (measured on two cores: 108 s one
+    // at a time, 117 s two at a time); `-- --test-threads 2` overrides
+    args.test_threads.get_or_insert(1);
     // without the feature, run a scene only when it is asked for by name
     let ignore = !cfg!(feature = "published") && args.filter.is_none();
     let trials = scenes::all()
