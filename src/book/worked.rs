@@ -60,15 +60,16 @@ fn shown(v: &Option<KeyValue>) -> String {
 }
 
 /// A value for a table cell without its unit (the key's cell carries it), so that the
-/// columns fit the page.
+/// columns fit the page; on a narrow page it breaks only before its ±.
 fn bare(v: &Option<KeyValue>) -> String {
+    let glued = |s: String| s.replace(' ', "\u{a0}");
     match v {
         Some(KeyValue::Float(c)) if c.uncertainty.value > 0.0 => format!(
-            "{} ± {}",
-            pretty(c.value, c.digits),
-            pretty(c.uncertainty.value, 1)
+            "{} {}",
+            glued(pretty(c.value, c.digits)),
+            glued(format!("± {}", pretty(c.uncertainty.value, 1)))
         ),
-        Some(KeyValue::Float(c)) => pretty(c.value, c.digits),
+        Some(KeyValue::Float(c)) => glued(pretty(c.value, c.digits)),
         other => shown(other),
     }
 }
@@ -98,7 +99,7 @@ fn table_row(r: &Row) -> Vec<String> {
     };
     vec![
         key,
-        format!("{}<br>→ {}", bare(&r.old_value), bare(&r.new_value)),
+        format!("{}<br>→\u{a0}{}", bare(&r.old_value), bare(&r.new_value)),
         moved,
     ]
 }
@@ -163,14 +164,14 @@ fn markdown(d: &Diff, what: &str, expected: bool, seconds: f64) -> String {
     if !moved.is_empty() {
         let rows: Vec<Vec<String>> = moved.iter().take(IN_VIEW).map(|r| table_row(r)).collect();
         s += &format!(
-            "<div class=\"numbers\">\n\n{}\n</div>\n\n",
+            "<div class=\"diff\">\n\n{}\n</div>\n\n",
             markdown_table(&header, &rows)
         );
         if moved.len() > IN_VIEW {
             let rest: Vec<Vec<String>> = moved.iter().skip(IN_VIEW).map(|r| table_row(r)).collect();
             s += &format!(
                 "<details>\n<summary>The other {} numbers that moved</summary>\n\n\
-                 <div class=\"numbers\">\n\n{}\n</div>\n\n</details>\n\n",
+                 <div class=\"diff\">\n\n{}\n</div>\n\n</details>\n\n",
                 rest.len(),
                 markdown_table(&header, &rest)
             );
@@ -193,7 +194,7 @@ fn markdown(d: &Diff, what: &str, expected: bool, seconds: f64) -> String {
 }
 
 /// What one scene's published check costs: its computation at the book's resolution, as
-/// timed in this build (scenes share the two cores, so alone each is quicker).
+/// timed when it was last computed (scenes share the two cores, so alone each is quicker).
 fn timings(scene_seconds: &[(String, f64)]) -> String {
     let rows: Vec<Vec<String>> = scene_seconds
         .iter()
@@ -205,10 +206,10 @@ fn timings(scene_seconds: &[(String, f64)]) -> String {
         })
         .collect();
     if rows.is_empty() {
-        return "*No scene was recomputed in this build (every output was reused).*\n".into();
+        return "*No scene has been computed yet.*\n".into();
     }
     format!(
-        "<div class=\"numbers\">\n\n{}\n</div>\n",
+        "<div class=\"diff\">\n\n{}\n</div>\n",
         markdown_table(&["one result's published check", "its computation"], &rows)
     )
 }
@@ -225,9 +226,27 @@ pub fn write(
     progress: &dyn Progress,
 ) -> Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
-    if !scene_seconds.is_empty() || !dir.join("timings.md").is_file() {
-        scene::write_atomically(&dir.join("timings.md"), &timings(scene_seconds))?;
-    }
+    // this build's times, and the last known ones of the scenes it reused
+    let known: Vec<(String, f64)> = std::fs::read_to_string(dir.join("timings.json"))
+        .ok()
+        .and_then(|t| serde_json::from_str(&t).ok())
+        .unwrap_or_default();
+    let merged: Vec<(String, f64)> = crate::scenes::all()
+        .iter()
+        .filter_map(|spec| {
+            let name = spec.name();
+            scene_seconds
+                .iter()
+                .chain(&known)
+                .find(|(n, _)| n == name)
+                .cloned()
+        })
+        .collect();
+    scene::write_atomically(
+        &dir.join("timings.json"),
+        &serde_json::to_string(&merged).unwrap_or_default(),
+    )?;
+    scene::write_atomically(&dir.join("timings.md"), &timings(&merged))?;
     // the comparison depends on Figure 4's sources and on this module's (the book's)
     let fingerprint = scene_fingerprint(module_of::<Fig4>()).unwrap_or("unknown");
     let stamp = format!(
