@@ -1,5 +1,9 @@
 //! Typed errors for bad input. Every message is one line that names the parameter, what
 //! was given and what is allowed, so the CLI can print it verbatim.
+//!
+//! A leaf: the error types of every layer are defined here (the exact flow's
+//! [`FlowError`], the plots' [`RenderError`]), so that this module imports nothing of the
+//! crate and every layer can use it.
 
 /// Every failure of the library: bad input, a flow that cannot be built, a plot that cannot
 /// be drawn, a file that cannot be written, or a case a method does not support. New
@@ -12,10 +16,10 @@ pub enum Error {
     Parameter(#[from] ParameterError),
     /// A region flow could not be built.
     #[error(transparent)]
-    Flow(#[from] crate::flow::FlowError),
+    Flow(#[from] FlowError),
     /// Drawing failed.
     #[error(transparent)]
-    Render(#[from] crate::render::RenderError),
+    Render(#[from] RenderError),
     /// Writing a file failed.
     #[error("could not write {path}: {source}")]
     Io {
@@ -32,6 +36,28 @@ pub enum Error {
     #[error("invariant violated: {0}")]
     Invariant(String),
 }
+
+/// Why a region flow cannot be built.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum FlowError {
+    /// The eigensolver did not converge.
+    #[error("the eigendecomposition of A^± did not converge")]
+    Eigen,
+    /// The eigenvectors are too ill-conditioned (a nearly defective A, e.g. a mode at
+    /// critical damping).
+    #[error(
+        "the eigenvectors of A^± are too ill-conditioned (condition {0:.1e} > 1e10): a mode is nearly critically damped; perturb ζ₁ slightly"
+    )]
+    IllConditioned(f64),
+    /// An eigenvalue with positive real part: the model would be unstable.
+    #[error("A^± has an eigenvalue with positive real part ({0:e}): check the damping")]
+    Unstable(f64),
+}
+
+/// A rendering failure (plotters reports drawing errors as text).
+#[derive(Debug, thiserror::Error)]
+#[error("could not draw the plot: {0}")]
+pub struct RenderError(pub String);
 
 /// A parameter outside its allowed range.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

@@ -59,6 +59,8 @@
 //! `src/bin/cantilever/`; a program that uses only the library can depend on the crate
 //! with `default-features = false` and compiles no CLI crates.
 
+#![warn(missing_docs)]
+
 pub mod asymptotics;
 pub mod atlas;
 pub mod citation;

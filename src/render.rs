@@ -10,10 +10,7 @@ use plotters::prelude::*;
 /// Plot size in pixels (the book scales SVGs to the page width).
 pub const WIDTH: u32 = 1000;
 
-/// A rendering failure (plotters reports drawing errors as text).
-#[derive(Debug, thiserror::Error)]
-#[error("could not draw the plot: {0}")]
-pub struct RenderError(pub String);
+pub use crate::error::RenderError;
 
 /// Maps any plotters error into [`RenderError`].
 pub fn drawing<E: std::fmt::Debug>(e: E) -> RenderError {

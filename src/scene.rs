@@ -1,6 +1,6 @@
 //! The [`Scene`] contract: one result of the paper, from its parameters to plain data, its
 //! key numbers, its verdict and its rendering. The registry of scenes is
-//! [`crate::scenes::all`]; the command line, the book and the tests iterate it.
+//! `scenes::all` (in the results band); the command line, the book and the tests iterate it.
 //!
 //! A scene declares exactly the parameters its result needs (at the book's resolution and
 //! at a reduced one for the tests), computes only that, and returns serialisable data.
@@ -276,22 +276,6 @@ pub fn output_of<S: Scene>(
         params,
         provenance,
     })
-}
-
-/// Looks a scene up by name.
-pub fn find(name: &str) -> Result<&'static dyn Entry, crate::error::ParameterError> {
-    let all = crate::scenes::all();
-    all.iter()
-        .copied()
-        .find(|s| s.name() == name)
-        .ok_or_else(|| {
-            let names: Vec<&str> = all.iter().map(|s| s.name()).collect();
-            crate::error::ParameterError::new(
-                "scene NAME",
-                name,
-                &format!("one of {}", names.join(", ")),
-            )
-        })
 }
 
 /// Writes `text` to `path` atomically: into a temporary file beside it, then renamed, so

@@ -137,7 +137,7 @@ fn rebuilding_one_scene_reuses_only_current_outputs(tmp: &Path) {
     );
     assert_eq!(report.reused.len(), all.len() - 3);
     // a test-resolution output is not reused for the book
-    let spec = impacting_cantilever::scene::find("fig4").unwrap();
+    let spec = impacting_cantilever::scenes::find("fig4").unwrap();
     let dir = tmp.join("src/generated/fig4");
     assert!(impacting_cantilever::book::reuse::previous(spec, &dir, Resolution::Test).is_ok());
     assert_eq!(

@@ -240,3 +240,12 @@ fn the_free_tip_amplitude_does_not_depend_on_the_truncation() {
         assert!((an.1 / a1.1 - 1.0).abs() < 1e-12, "N={n}");
     }
 }
+
+#[test]
+fn the_quoted_k1_is_the_first_modal_stiffness_to_its_printed_figures() {
+    let k1 = impacting_cantilever::galerkin::first_modal_stiffness();
+    assert!((k1 - 12.3624).abs() <= 0.5e-4, "{k1}");
+    assert!(impacting_cantilever::report::unit_meaning("k₁")
+        .unwrap()
+        .contains("12.3624"));
+}

@@ -28,7 +28,7 @@ fn output_of_cached<S: Scene>(cell: &'static OnceLock<S::Data>) -> SceneOutput {
 /// One scene at the tests' resolution: it has key numbers, a plot, a table with data and
 /// evidence; where that resolution is reduced, its key numbers match the snapshot.
 fn scene_at_test_resolution(name: &str) {
-    let spec = scene::find(name).unwrap();
+    let spec = scenes::find(name).unwrap();
     let out = match name {
         "fig4" => output_of_cached::<Fig4>(&FIG4),
         "fig5" => output_of_cached::<Fig5>(&FIG5),

@@ -3,10 +3,10 @@
 //! limit at fixed k.
 
 use impacting_cantilever::continuum::{self, ModeShape};
-use impacting_cantilever::convergence::{self, Discretisation, Setup};
+use impacting_cantilever::convergence::{self, two_basis_runs, Discretisation, Setup};
 use impacting_cantilever::galerkin::{first_modal_stiffness, GalerkinParams, Region};
 use impacting_cantilever::numerics::Quadrature;
-use impacting_cantilever::two_basis::{self, TwoBasisModel, TwoBasisState};
+use impacting_cantilever::two_basis::{TwoBasisModel, TwoBasisState};
 use nalgebra::{DMatrix, DVector};
 
 fn model(n: usize, k_over_k1: f64, zeta1: f64) -> TwoBasisModel {
@@ -169,7 +169,7 @@ fn a_switch_loses_exactly_the_residuals_kinetic_energy() {
 #[test]
 fn undamped_energy_is_conserved_except_at_the_switches() {
     let m = model(10, 100.0, 0.0);
-    let (_, _, state, switches) = two_basis::one_contact(&m).unwrap();
+    let (_, _, state, switches) = two_basis_runs::one_contact(&m).unwrap();
     let n = m.modes();
     let e0 = 0.125; // ½|η̇|², η̇ = ½e₁
     let lost: f64 = switches
@@ -190,7 +190,7 @@ fn undamped_energy_is_conserved_except_at_the_switches() {
 #[test]
 fn energy_lost_per_switch_falls_like_n_to_the_minus_seven() {
     let lost = |n| {
-        let (_, _, _, sw) = two_basis::one_contact(&model(n, 100.0, 0.01)).unwrap();
+        let (_, _, _, sw) = two_basis_runs::one_contact(&model(n, 100.0, 0.01)).unwrap();
         sw[0].relative_energy_lost()
     };
     let (a, b) = (lost(8), lost(16));
@@ -198,7 +198,7 @@ fn energy_lost_per_switch_falls_like_n_to_the_minus_seven() {
     // measured −6.99 over N = 8…128: the squared tail Σ_{i>N} (k/2μ_i)² ∝ k²N⁻⁷
     assert!((slope + 7.0).abs() < 0.1, "slope {slope}");
     // and it grows like k²
-    let (_, _, _, sw) = two_basis::one_contact(&model(16, 1000.0, 0.01)).unwrap();
+    let (_, _, _, sw) = two_basis_runs::one_contact(&model(16, 1000.0, 0.01)).unwrap();
     let ratio = sw[0].relative_energy_lost() / b;
     assert!(
         ratio > 50.0 && ratio < 200.0,

@@ -72,7 +72,7 @@ pub fn build_only(
     let scenes = crate::scenes::all();
     if let Some(names) = only {
         for name in names {
-            scene::find(name)?;
+            crate::scenes::find(name)?;
         }
     }
     // what each scene's page will use: a current previous output, or a fresh run

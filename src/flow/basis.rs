@@ -189,6 +189,7 @@ pub fn invert(v: &DMatrix<Complex64>) -> Result<DMatrix<Complex64>, FlowError> {
     }
 }
 
+/// The 1-norm of a complex matrix: the largest column sum of moduli.
 pub fn norm1(m: &DMatrix<Complex64>) -> f64 {
     m.column_iter()
         .map(|c| c.iter().map(|z| z.norm()).sum::<f64>())

@@ -37,22 +37,7 @@ use num_complex::Complex64;
 /// modal solution would lose more than ~6 digits and we refuse rather than mislead.
 pub const MAX_EIGENVECTOR_CONDITION: f64 = 1e10;
 
-/// Why a region flow cannot be built.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum FlowError {
-    /// The eigensolver did not converge.
-    #[error("the eigendecomposition of A^± did not converge")]
-    Eigen,
-    /// The eigenvectors are too ill-conditioned (a nearly defective A, e.g. a mode at
-    /// critical damping).
-    #[error(
-        "the eigenvectors of A^± are too ill-conditioned (condition {0:.1e} > 1e10): a mode is nearly critically damped; perturb ζ₁ slightly"
-    )]
-    IllConditioned(f64),
-    /// An eigenvalue with positive real part: the model would be unstable.
-    #[error("A^± has an eigenvalue with positive real part ({0:e}): check the damping")]
-    Unstable(f64),
-}
+pub use crate::error::FlowError;
 
 pub mod basis;
 pub mod block;

@@ -32,3 +32,19 @@ registry! {
     atlas::Atlas,
     work_precision::WorkPrecision,
 }
+
+/// Looks a scene up by name.
+pub fn find(name: &str) -> Result<&'static dyn Entry, crate::error::ParameterError> {
+    let all = all();
+    all.iter()
+        .copied()
+        .find(|s| s.name() == name)
+        .ok_or_else(|| {
+            let names: Vec<&str> = all.iter().map(|s| s.name()).collect();
+            crate::error::ParameterError::new(
+                "scene NAME",
+                name,
+                &format!("one of {}", names.join(", ")),
+            )
+        })
+}

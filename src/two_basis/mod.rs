@@ -41,9 +41,6 @@
 //! it then goes on in its new region if it moves back in, and switches straight back if it
 //! does not ([`Simulator::flight`]).
 
-mod runs;
-pub use runs::{forced_from_rest, one_contact, settle};
-
 use crate::continuum::{self, ModeShape};
 use crate::error::{self, Error, ParameterError};
 use crate::galerkin::{FreeModes, GalerkinModel, GalerkinParams, Region, SpatialProfile};

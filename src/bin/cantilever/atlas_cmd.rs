@@ -111,7 +111,7 @@ pub fn merge(files: &[PathBuf], out: &Path) -> Result<(), Error> {
         &data,
         Provenance::of_scene("atlas", resolution),
     )?;
-    let spec = scene::find(Atlas::NAME)?;
+    let spec = impacting_cantilever::scenes::find(Atlas::NAME)?;
     scene::write(spec, &output, out)
 }
 

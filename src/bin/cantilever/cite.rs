@@ -22,7 +22,7 @@ pub fn run(
     key: Option<&str>,
     progress: &dyn impacting_cantilever::scene::Progress,
 ) -> Result<Citation, super::Failure> {
-    let spec = scene::find(name)?;
+    let spec = impacting_cantilever::scenes::find(name)?;
     let out = spec.run(Resolution::Book, progress)?;
     let keys = match key {
         None => out.key_numbers.clone(),

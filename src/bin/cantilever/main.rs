@@ -301,7 +301,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             Ok(())
         }
         Command::Scene { name, out, json } => {
-            let spec = scene::find(&name)?;
+            let spec = scenes::find(&name)?;
             let dir = out.unwrap_or_else(|| PathBuf::from("out").join(spec.name()));
             // an unwritable --out is bad input, found before the computation
             writable_dir(&dir)?;
@@ -484,7 +484,7 @@ fn modes_command(modes: usize, k_over_k1: f64, json: bool) -> Result<(), Failure
 #[cfg(feature = "book")]
 fn book_command(book_dir: &std::path::Path, only: Option<&[String]>) -> Result<(), Failure> {
     for name in only.into_iter().flatten() {
-        scene::find(name).map_err(|mut e| {
+        scenes::find(name).map_err(|mut e| {
             e.name = "--only".into();
             e
         })?;

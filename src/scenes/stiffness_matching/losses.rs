@@ -5,7 +5,8 @@ use super::MatchingParams;
 use crate::convergence::{self, Setup};
 use crate::error::Error;
 use crate::galerkin::{self, Forcing, GalerkinParams};
-use crate::two_basis::{self, Switch, TwoBasisModel};
+use crate::convergence::two_basis_runs;
+use crate::two_basis::{Switch, TwoBasisModel};
 use crate::verification::fitted_slope_with_error;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -86,14 +87,14 @@ fn at(k_over_k1: f64, n: usize, p: &MatchingParams) -> Result<Losses, Error> {
     let omega = p.omegas[0] * galerkin::first_frequency();
     let unforced = GalerkinParams::new(n, k).with_zeta1(p.zeta1);
     let forced = unforced.clone().with_forcing(Forcing::paper(omega));
-    let (_, _, _, one) = two_basis::one_contact(&TwoBasisModel::new(unforced)?)?;
+    let (_, _, _, one) = two_basis_runs::one_contact(&TwoBasisModel::new(unforced)?)?;
     let energy = |entering: bool| {
         one.iter()
             .find(|s| s.entering == entering)
             .map_or(0.0, Switch::relative_energy_lost)
     };
     let exit_velocity_l2 = one.iter().find(|s| !s.entering).map_or(0.0, |s| s.velocity_lost);
-    let (_, _, sw) = two_basis::forced_from_rest(&TwoBasisModel::new(forced)?, p.periods)?;
+    let (_, _, sw) = two_basis_runs::forced_from_rest(&TwoBasisModel::new(forced)?, p.periods)?;
     // the switch at t = 0 from rest has no energy to lose
     let moving: Vec<&Switch> = sw.iter().filter(|s| s.energy_before > 0.0).collect();
     let lost: Vec<f64> = moving.iter().map(|s| s.relative_energy_lost()).collect();

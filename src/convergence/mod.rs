@@ -17,13 +17,15 @@
 //! stop's point force is the tail of the tip flexibility, Σ_{j>N} φ_j(1)²/k_j ≈ 4/(3πβ_N³),
 //! so errors are expected to fall like k/β_N³ ∝ N⁻³ once (β_N)³ ≫ k — the paper's criterion.
 
+pub mod two_basis_runs;
+
 use crate::continuum;
 use crate::error::{Error, ParameterError};
 use crate::fe::FeBeam;
 use crate::galerkin::{self, Forcing, GalerkinModel, GalerkinParams};
 use crate::orbit::{settle_until_periodic, OrbitKind};
 use crate::sim::{Events, Simulator, TipMax};
-use crate::two_basis::{self, TwoBasisModel};
+use crate::two_basis::TwoBasisModel;
 use crate::verification::{self, Richardson};
 use nalgebra::DVector;
 use serde::Serialize;
@@ -157,8 +159,9 @@ fn two_basis(n: usize, s: &Setup) -> Result<(TwoBasisModel, TwoBasisModel), Erro
 pub fn observe(d: Discretisation, s: &Setup) -> Result<Observables, Error> {
     if let Discretisation::TwoBasis(n) = d {
         let (free, forced) = two_basis(n, s)?;
-        let (duration, exit_tip, state, _) = two_basis::one_contact(&free)?;
-        let (forced_tip, forced_tip_velocity, _) = two_basis::forced_from_rest(&forced, s.periods)?;
+        let (duration, exit_tip, state, _) = two_basis_runs::one_contact(&free)?;
+        let (forced_tip, forced_tip_velocity, _) =
+            two_basis_runs::forced_from_rest(&forced, s.periods)?;
         return Ok(Observables {
             contact_duration: duration,
             exit_tip_velocity: exit_tip,
@@ -182,7 +185,7 @@ pub fn observe(d: Discretisation, s: &Setup) -> Result<Observables, Error> {
 /// The forced run only: tip displacement and velocity after `s.periods` periods from rest.
 pub fn observe_forced(d: Discretisation, s: &Setup) -> Result<(f64, f64), Error> {
     if let Discretisation::TwoBasis(n) = d {
-        let (d, v, _) = two_basis::forced_from_rest(&two_basis(n, s)?.1, s.periods)?;
+        let (d, v, _) = two_basis_runs::forced_from_rest(&two_basis(n, s)?.1, s.periods)?;
         return Ok((d, v));
     }
     forced(build(d, s)?.forced, s.periods)
@@ -505,7 +508,7 @@ const SETTLE: (u64, u64, u64) = (100, 32, 4000);
 pub fn periodic(d: Discretisation, s: &Setup) -> Result<PeriodicObservables, Error> {
     let (chunk, window, max) = SETTLE;
     if let Discretisation::TwoBasis(n) = d {
-        return two_basis::settle(&two_basis(n, s)?.1, chunk, window, max);
+        return two_basis_runs::settle(&two_basis(n, s)?.1, chunk, window, max);
     }
     let model = build(d, s)?.forced;
     let m = model.modes();

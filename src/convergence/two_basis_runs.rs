@@ -1,12 +1,12 @@
-//! The two-basis model's experiments: the one contact and the forced run of
-//! [`crate::convergence`], and the settling to a periodic orbit.
+//! The two-basis model's experiments: the one contact and the forced run of the refinement
+//! studies ([`super`]), and the settling to a periodic orbit.
 
-use super::{Switch, TwoBasisModel};
-use crate::convergence::PeriodicObservables;
+use super::PeriodicObservables;
 use crate::error::Error;
 use crate::galerkin::Region;
 use crate::orbit::{self, OrbitKind};
 use crate::sim::Clock;
+use crate::two_basis::{Switch, TwoBasisModel};
 use nalgebra::DVector;
 
 /// The one-contact experiment of [`crate::convergence`] on the two-basis model: the beam
