@@ -38,20 +38,26 @@ fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
     }
 }
 
-/// The unit a source file belongs to: a top-level module (`galerkin`, `sim`), one scene
-/// (`scenes::fig4`), the registry (`scenes`), the crate root (`crate`); `None` for the
-/// command line, which computes no scene.
+/// The layers of the crate (folders under `src/`).
+const BANDS: [&str; 5] = ["base", "model", "engine", "analysis", "results"];
+
+/// The unit a source file belongs to: a module of a band (`galerkin`, `sim`), one scene
+/// (`scenes::fig4`), the registry (`scenes`), the crate root (`crate`) or its error module;
+/// `None` for the command line, which computes no scene.
 fn unit_of(relative: &Path) -> Option<String> {
     let parts: Vec<String> = relative
         .iter()
         .map(|p| p.to_string_lossy().trim_end_matches(".rs").to_string())
         .collect();
+    let parts: Vec<&str> = parts.iter().map(String::as_str).collect();
     match parts.as_slice() {
-        [lib] if lib == "lib" => Some("crate".into()),
-        [bin, ..] if bin == "bin" => None,
-        [scenes, module] if scenes == "scenes" && module == "mod" => Some("scenes".into()),
-        [scenes, scene, ..] if scenes == "scenes" => Some(format!("scenes::{scene}")),
-        [module, ..] => Some(module.clone()),
+        ["lib"] => Some("crate".into()),
+        ["bin", ..] => None,
+        ["results", "scenes", "mod"] => Some("scenes".into()),
+        ["results", "scenes", scene, ..] => Some(format!("scenes::{scene}")),
+        [band, "mod"] if BANDS.contains(band) => Some((*band).into()),
+        [band, module, ..] if BANDS.contains(band) => Some((*module).into()),
+        [module, ..] => Some((*module).into()),
         [] => None,
     }
 }
@@ -98,7 +104,8 @@ fn group_items(rest: &str) -> Vec<&str> {
     items
 }
 
-/// The units named by a path after `crate::`.
+/// The units named by a path after `crate::` (a band's name is skipped: the unit is the
+/// module after it).
 fn path_units(rest: &str, refs: &mut BTreeSet<String>) {
     if let Some(group) = rest.strip_prefix('{') {
         for item in group_items(group) {
@@ -107,6 +114,14 @@ fn path_units(rest: &str, refs: &mut BTreeSet<String>) {
         return;
     }
     let first = ident(rest);
+    if BANDS.contains(&first) {
+        if let Some(after) = rest[first.len()..].strip_prefix("::") {
+            path_units(after, refs);
+        } else {
+            refs.insert(first.to_string());
+        }
+        return;
+    }
     match first {
         "" | "self" => {}
         "prelude" => {

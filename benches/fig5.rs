@@ -2,7 +2,7 @@
 //! on all cores. Target (issue): ≤ 60 s on the 2-core machine.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use impacting_cantilever::scenes::fig5::{compute, Fig5Params};
+use impacting_cantilever::results::scenes::fig5::{compute, Fig5Params};
 use std::time::Duration;
 
 fn fig5(c: &mut Criterion) {

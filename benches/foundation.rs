@@ -1,7 +1,7 @@
 //! Benchmarks of the foundation: roots of eq (3) and the K⁺ eigenproblem of Fig 2.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use impacting_cantilever::{continuum, galerkin};
+use impacting_cantilever::model::{continuum, galerkin};
 use nalgebra::{DMatrix, DVector, SymmetricEigen};
 use std::hint::black_box;
 

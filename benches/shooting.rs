@@ -4,10 +4,10 @@
 //! the book's 128 × 128 N = 10 atlas in ≤ 120 s on 2 cores (ten samples: about 11 minutes).
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use impacting_cantilever::problems;
-use impacting_cantilever::scenes::fig5::{self, branches, Fig5Params};
-use impacting_cantilever::shooting;
-use impacting_cantilever::sim::Simulator;
+use impacting_cantilever::analysis::shooting;
+use impacting_cantilever::engine::sim::Simulator;
+use impacting_cantilever::model::problems;
+use impacting_cantilever::results::scenes::fig5::{self, branches, Fig5Params};
 use nalgebra::DVector;
 use rayon::prelude::*;
 use std::hint::black_box;
@@ -39,11 +39,11 @@ fn fig5_branches(c: &mut Criterion) {
 }
 
 fn atlas(c: &mut Criterion) {
-    let p = impacting_cantilever::atlas::AtlasParams::book();
+    let p = impacting_cantilever::analysis::atlas::AtlasParams::book();
     let mut g = c.benchmark_group("atlas");
     g.sample_size(10);
     g.bench_function("128 x 128 atlas, N = 10 (all threads)", |b| {
-        b.iter(|| impacting_cantilever::atlas::compute(black_box(&p), &|| {}).unwrap())
+        b.iter(|| impacting_cantilever::analysis::atlas::compute(black_box(&p), &|| {}).unwrap())
     });
     g.finish();
 }

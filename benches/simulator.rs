@@ -3,10 +3,10 @@
 //! k = 1000 k₁ (target ≤ 30 ms); and the reference integrator on the same runs.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use impacting_cantilever::dopri5::{self, Tolerances};
-use impacting_cantilever::galerkin::GalerkinModel;
-use impacting_cantilever::problems;
-use impacting_cantilever::sim::Simulator;
+use impacting_cantilever::engine::dopri5::{self, Tolerances};
+use impacting_cantilever::engine::sim::Simulator;
+use impacting_cantilever::model::galerkin::GalerkinModel;
+use impacting_cantilever::model::problems;
 use nalgebra::DVector;
 use std::hint::black_box;
 

@@ -17,43 +17,19 @@
 //! # }
 //! ```
 //!
-//! The crate map, one module per model variant or concept:
+//! ## The layers
 //!
-//! | module | what |
-//! |---|---|
-//! | [`continuum`] | §2.1, eqs (1)–(4): the beam with a compliant stop, roots of eq (3), mode shapes (2) |
-//! | [`galerkin`] | §2.2, §5.1, eqs (5)–(9), (31)–(35): the N-mode Galerkin compliant (bilinear) model |
-//! | [`two_basis`] | §2.2, first half: the two-basis switching truncation (constrained modes in contact, free modes out of it, projected at each switch) |
-//! | [`fe`] | an independent Hermite-cubic finite-element beam (eqs 1, 31–33), simulated exactly in its own modes |
-//! | [`convergence`] | §2.3: refinement studies at fixed k, Richardson limits, modes needed N*(k) |
-//! | [`flow`] | eq (36): the exact solution inside one region |
-//! | [`sim`] | §5.2: the exact simulator through its switches — clock, signal, certified crossing search, maximum, energy, observers, driver |
-//! | [`dopri5`] | an independent Dormand–Prince 5(4) integrator with event location, for cross-verification |
-//! | [`restitution`] | §3–4, eqs (12), (14), (28)–(29): the modal restitution laws |
-//! | [`asymptotics`] | §4.1–4.3, eqs (18)–(19), (23): impact asymptotics as k → ∞ |
-//! | [`rigid`] | §3: the rigid-impact N-mode model with any law, and its chattering policy |
-//! | [`energetic`] | §5.4, eqs (38)–(39): the energetic coefficient of restitution |
-//! | [`harmonics`] | Figure 9(b): the tip velocity's harmonic spectrum in closed form |
-//! | [`experiment`] | §6: the rig in the model's terms by beam theory |
-//! | [`orbit`] | §5.2: the stroboscopic map, period detection (m, n), seeded random starts |
-//! | [`shooting`] | §5.2–5.3: periodic orbits by Newton shooting with the exact monodromy, Floquet multipliers |
-//! | [`impact_section`] | §5.3: periodic orbits by Newton shooting on the impact section d = d₀, ḋ > 0 |
-//! | [`continuation`] | periodic orbits continued in k or ω: folds, period doublings, Neimark–Sacker, grazing |
-//! | [`atlas`] | the multi-tap atlas: stable orbits (m, n) and their coexistence over (k, ω), shardable |
-//! | [`problems`] | the paper's parameter sets as named constructors (Figures 3, 4, 6, 9; the linear model) |
-//! | [`verification`] | observed orders, Richardson extrapolation and GCI |
-//! | [`numerics`] | Brent's root finder, Gauss–Legendre quadrature, a fast sine–cosine |
-//! | [`golden`] | independent reference values (mpmath roots, Blevins' table) |
-//! | [`citation`] | how to cite a number: software, version, paper, as text and BibTeX |
-//! | [`provenance`] | version, commit, toolchain, date and resolution of generated numbers |
-//! | [`scene`] | the Scene trait: one result of the paper from parameters to data, key numbers, verdict, plots |
-//! | [`scenes`] | the registry and one folder per result |
-//! | [`render`] | shared plotting and table helpers (no numerics) |
-//! | [`report`] | key numbers rounded to the digits the method resolves |
-//! | [`diff`] | which key numbers moved between two runs, judged against their uncertainties |
-//! | [`error`] | the crate's error type and the parameter checks |
-//! | [`prelude`] | what a program using the library needs in one `use` |
-//! | `book` | (feature `book`) the mdBook build with LaTeX → MathML |
+//! The crate is five bands; a module uses only its own band (without cycles) and the bands
+//! above it in this list, and [`error`] is a leaf every band may use (`tests/layers.rs`
+//! checks both rules on every `crate::` path of the code).
+//!
+//! | band | modules | what |
+//! |---|---|---|
+//! | [`base`] | `numerics`, `verification`, `report`, `provenance`, `golden` | root finding and quadrature, refinement studies, cited numbers, build records, reference values |
+//! | [`model`] | `continuum`, `galerkin`, `fe`, `restitution`, `asymptotics`, `problems`, `experiment` | the paper's models as mathematics: eq (3) and its modes, the Galerkin matrices, the finite-element beam, the restitution laws, the asymptotics, named parameter sets, the rig |
+//! | [`engine`] | `flow`, `sim`, `dopri5`, `rigid`, `two_basis` | time integration: the exact flow of one region, the certified simulator, an independent Dormand–Prince integrator, the rigid-impact and two-basis models |
+//! | [`analysis`] | `orbit`, `shooting`, `impact_section`, `continuation`, `atlas`, `energetic`, `harmonics`, `convergence` | what is computed from runs: periodic orbits and their stability, branches, the atlas, r_E, spectra, refinement in N |
+//! | [`results`] | `scene`, `scenes`, `render`, `citation`, `diff`, `book` | the paper's results: scenes, plots and tables, citations, comparisons of key numbers, the book |
 //!
 //! The `cantilever` command line (feature `cli`, on by default) lives in
 //! `src/bin/cantilever/`; a program that uses only the library can depend on the crate
@@ -61,55 +37,27 @@
 
 #![warn(missing_docs)]
 
-pub mod asymptotics;
-pub mod atlas;
-pub mod citation;
-pub mod continuation;
-pub mod continuum;
-pub mod convergence;
-pub mod diff;
-pub mod dopri5;
-pub mod energetic;
+pub mod analysis;
+pub mod base;
+pub mod engine;
 pub mod error;
-pub mod experiment;
-pub mod fe;
-pub mod flow;
-pub mod galerkin;
-pub mod golden;
-pub mod harmonics;
-pub mod impact_section;
-pub mod numerics;
-pub mod orbit;
-pub mod problems;
-pub mod provenance;
-pub mod render;
-pub mod report;
-pub mod restitution;
-pub mod rigid;
-pub mod scene;
-pub mod scenes;
-pub mod shooting;
-pub mod sim;
-pub mod two_basis;
-pub mod verification;
-
-#[cfg(feature = "book")]
-pub mod book;
+pub mod model;
+pub mod results;
 
 /// The names a program using the library needs, in one `use`.
 pub mod prelude {
-    pub use crate::error::{Error, ParameterError};
-    pub use crate::galerkin::{
-        first_frequency, first_modal_stiffness, Forcing, GalerkinModel, GalerkinParams, Region,
-        SpatialProfile,
-    };
-    pub use crate::orbit::{settle, OrbitKind};
-    pub use crate::problems::{self, Forced};
-    pub use crate::restitution;
-    pub use crate::rigid::{RigidEvent, RigidImpact, RigidRun};
-    pub use crate::sim::{
+    pub use crate::analysis::orbit::{settle, OrbitKind};
+    pub use crate::engine::rigid::{RigidEvent, RigidImpact, RigidRun};
+    pub use crate::engine::sim::{
         Clock, Dense, Energy, EventView, Events, Observer, SegmentView, Settings, Simulator,
         Strobe, TipMax,
     };
+    pub use crate::error::{Error, ParameterError};
+    pub use crate::model::galerkin::{
+        first_frequency, first_modal_stiffness, Forcing, GalerkinModel, GalerkinParams, Region,
+        SpatialProfile,
+    };
+    pub use crate::model::problems::{self, Forced};
+    pub use crate::model::restitution;
     pub use nalgebra::{DMatrix, DVector};
 }

@@ -167,8 +167,8 @@ fn modes_handles_stiffness_far_beyond_double_range_exponents() {
         assert_eq!(code, 0, "{k}: {err}");
         json(&out)["eigenvalues"][0]["lambda"].as_f64().unwrap()
     };
-    let k1 = impacting_cantilever::galerkin::first_modal_stiffness();
-    let k2 = impacting_cantilever::continuum::modal_stiffness(2).unwrap();
+    let k1 = impacting_cantilever::model::galerkin::first_modal_stiffness();
+    let k2 = impacting_cantilever::model::continuum::modal_stiffness(2).unwrap();
     assert!((lambda1("1e-200") / k1 - 1.0).abs() < 1e-15);
     let (huge, large) = (lambda1("1e250"), lambda1("1e100"));
     assert!(huge > k1 && huge < k2, "interlacing: {huge}");
@@ -274,10 +274,10 @@ fn each_output_field_means_one_thing() {
     assert_eq!(v["contacts_in_window"], 6);
     // units stated, and the free tip amplitude at this ω is what the model computes
     let u = &v["units"];
-    let w1 = impacting_cantilever::galerkin::first_frequency();
+    let w1 = impacting_cantilever::model::galerkin::first_frequency();
     assert!((u["beta1_squared"].as_f64().unwrap() - w1).abs() < 1e-15);
     assert!((u["forcing_period_T"].as_f64().unwrap() - std::f64::consts::PI / w1).abs() < 1e-15);
-    let a = impacting_cantilever::problems::figure4(10)
+    let a = impacting_cantilever::model::problems::figure4(10)
         .model()
         .unwrap()
         .free_tip_amplitude()

@@ -4,9 +4,9 @@
 //! (the §5.2 criterion, independent of shooting); continuation in ω is checked against a
 //! brute-force transient at each step of a row.
 
-use impacting_cantilever::atlas::{self, cell::CellSearch, AtlasParams, Partial, Shard};
-use impacting_cantilever::orbit::{settle, OrbitKind};
-use impacting_cantilever::sim::Simulator;
+use impacting_cantilever::analysis::atlas::{self, cell::CellSearch, AtlasParams, Partial, Shard};
+use impacting_cantilever::analysis::orbit::{settle, OrbitKind};
+use impacting_cantilever::engine::sim::Simulator;
 
 /// A small atlas: 5 k × 4 ω over the book's ranges.
 fn small() -> AtlasParams {

@@ -37,10 +37,10 @@ fn book_builds_with_rendered_math_plots_and_tables() {
     let tmp = std::env::temp_dir().join(format!("cantilever-book-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&tmp);
     copy_tree(&Path::new(env!("CARGO_MANIFEST_DIR")).join("book"), &tmp);
-    impacting_cantilever::book::build(
+    impacting_cantilever::results::book::build(
         &tmp,
-        impacting_cantilever::scene::Resolution::Test,
-        &impacting_cantilever::scene::Silent,
+        impacting_cantilever::results::scene::Resolution::Test,
+        &impacting_cantilever::results::scene::Silent,
     )
     .expect("book builds");
     let page = std::fs::read_to_string(tmp.join("build/fig2.html")).unwrap();
@@ -59,7 +59,7 @@ fn book_builds_with_rendered_math_plots_and_tables() {
     let chapters = chapters_of_summary(&tmp.join("src/SUMMARY.md"));
     assert!(chapters.len() >= 10, "SUMMARY.md lists the chapters");
     // every scene has its chapter in the book
-    for spec in impacting_cantilever::scenes::all() {
+    for spec in impacting_cantilever::results::scenes::all() {
         let chapter = spec.chapter().trim_end_matches(".md");
         assert!(
             chapters.iter().any(|c| c == chapter),
@@ -69,7 +69,7 @@ fn book_builds_with_rendered_math_plots_and_tables() {
     }
     // the landing page carries the generated verdict summary, one row per scene
     let landing = std::fs::read_to_string(tmp.join("build/introduction.html")).unwrap();
-    for spec in impacting_cantilever::scenes::all() {
+    for spec in impacting_cantilever::results::scenes::all() {
         let link = format!("href=\"{}\"", spec.chapter().replace(".md", ".html"));
         assert!(landing.contains(&link), "{} in the summary", spec.name());
     }
@@ -101,9 +101,9 @@ fn book_builds_with_rendered_math_plots_and_tables() {
 /// `cantilever book --only`: the named scene is recomputed; every other one is reused when
 /// its previous output is current, and recomputed, with the reason, when it is not.
 fn rebuilding_one_scene_reuses_only_current_outputs(tmp: &Path) {
-    use impacting_cantilever::book::build_only;
-    use impacting_cantilever::scene::{Resolution, Silent};
-    let all = impacting_cantilever::scenes::all();
+    use impacting_cantilever::results::book::build_only;
+    use impacting_cantilever::results::scene::{Resolution, Silent};
+    let all = impacting_cantilever::results::scenes::all();
     // a previous output that records another fingerprint is not current
     let stale = tmp.join("src/generated/fig6/key_numbers.json");
     let text = std::fs::read_to_string(&stale).unwrap();
@@ -137,11 +137,14 @@ fn rebuilding_one_scene_reuses_only_current_outputs(tmp: &Path) {
     );
     assert_eq!(report.reused.len(), all.len() - 3);
     // a test-resolution output is not reused for the book
-    let spec = impacting_cantilever::scenes::find("fig4").unwrap();
+    let spec = impacting_cantilever::results::scenes::find("fig4").unwrap();
     let dir = tmp.join("src/generated/fig4");
-    assert!(impacting_cantilever::book::reuse::previous(spec, &dir, Resolution::Test).is_ok());
+    assert!(
+        impacting_cantilever::results::book::reuse::previous(spec, &dir, Resolution::Test).is_ok()
+    );
     assert_eq!(
-        impacting_cantilever::book::reuse::previous(spec, &dir, Resolution::Book).unwrap_err(),
+        impacting_cantilever::results::book::reuse::previous(spec, &dir, Resolution::Book)
+            .unwrap_err(),
         "its previous output is at test resolution"
     );
     let unknown = build_only(tmp, Resolution::Test, Some(&["fig99".to_string()]), &Silent);

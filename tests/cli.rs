@@ -20,7 +20,7 @@ fn cantilever(args: &[&str]) -> (i32, String, String) {
 fn unknown_scene_is_rejected_with_the_list_of_scenes() {
     let (code, _, err) = cantilever(&["scene", "nope"]);
     assert_eq!(code, 2);
-    let names: Vec<&str> = impacting_cantilever::scenes::all()
+    let names: Vec<&str> = impacting_cantilever::results::scenes::all()
         .iter()
         .map(|s| s.name())
         .collect();
@@ -86,7 +86,7 @@ fn modes_command_compares_galerkin_and_continuum() {
     // Checked against values the command does not compute: the 50-digit mpmath roots of
     // golden/roots.json. At k = 0 the Galerkin eigenvalues are the free ones, λ_i =
     // (β_i⁻)⁴; at k = 100k₁ the continuum column is (β_i⁺)⁴ and, for N = 1, λ₁ = k₁ + k.
-    use impacting_cantilever::golden::GoldenRoots;
+    use impacting_cantilever::base::golden::GoldenRoots;
     let g = GoldenRoots::load();
     let free = GoldenRoots::table(&g.free);
     let at_100 = GoldenRoots::table(&g.finite_k["100"]);
@@ -207,7 +207,7 @@ fn simulate_json_reports_the_orbit_and_its_checks() {
         v["max_tip_time"].as_f64().unwrap(),
         v["max_tip_tolerance"].as_f64().unwrap(),
     );
-    let period = std::f64::consts::PI / impacting_cantilever::galerkin::first_frequency();
+    let period = std::f64::consts::PI / impacting_cantilever::model::galerkin::first_frequency();
     assert!(v["max_tip"].as_f64().unwrap() > 0.0 && tol < 1e-12);
     assert!(t >= 300.0 * period && t <= 308.0 * period, "t = {t}");
 }
@@ -307,7 +307,7 @@ fn cite_rejects_an_unknown_key_naming_the_nearest_ones() {
 
 #[test]
 fn citation_cff_matches_the_crate_and_the_cite_command() {
-    use impacting_cantilever::citation;
+    use impacting_cantilever::results::citation;
     let cff =
         std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/CITATION.cff")).unwrap();
     assert!(cff.contains(&format!("\nversion: {}\n", env!("CARGO_PKG_VERSION"))));

@@ -4,11 +4,11 @@
 //! period-2 orbit, Neimark–Sacker against the multipliers and an unsettled transient,
 //! folds against two coexisting orbits found by shooting.
 
-use impacting_cantilever::continuation::{
+use impacting_cantilever::analysis::continuation::{
     self, BifurcationKind, Branch, Family, Parameter, Settings,
 };
-use impacting_cantilever::orbit::{settle, OrbitKind};
-use impacting_cantilever::problems;
+use impacting_cantilever::analysis::orbit::{settle, OrbitKind};
+use impacting_cantilever::model::problems;
 use nalgebra::DVector;
 
 fn family(n: usize) -> Family<'static> {
@@ -162,9 +162,14 @@ fn a_fold_joins_two_coexisting_orbits() {
     let sim = fam.simulator(2.9).unwrap();
     let mut found = None;
     for s in 0..64u64 {
-        let mut rng = impacting_cantilever::orbit::SplitMix64::for_point(7, 1, 0, s);
+        let mut rng = impacting_cantilever::analysis::orbit::SplitMix64::for_point(7, 1, 0, s);
         let (amp, _) = sim.model().free_tip_amplitude();
-        let x0 = impacting_cantilever::orbit::random_state(&mut rng, 1, 4.0 * amp, sim.omega());
+        let x0 = impacting_cantilever::analysis::orbit::random_state(
+            &mut rng,
+            1,
+            4.0 * amp,
+            sim.omega(),
+        );
         let o = settle(&sim, &x0, 1000, 40, 0).unwrap();
         if let OrbitKind::Periodic { m: 3, .. } = o.kind {
             found = Some(o.state);
@@ -191,7 +196,12 @@ fn a_fold_joins_two_coexisting_orbits() {
     let sim = fam.simulator(k).unwrap();
     let side = |i: usize| {
         let q = &b.points[i];
-        impacting_cantilever::shooting::shoot(&sim, &DVector::from_vec(q.state.clone()), 3).unwrap()
+        impacting_cantilever::analysis::shooting::shoot(
+            &sim,
+            &DVector::from_vec(q.state.clone()),
+            3,
+        )
+        .unwrap()
     };
     let (lo, hi) = (
         f.index.saturating_sub(2),

@@ -1,10 +1,10 @@
 //! Code verification of the continuum model (§2.1): roots of eq (3) against independent
 //! golden values, mode shapes against their defining properties, and the small-k law (4).
 
-use impacting_cantilever::continuum::{self, ModeShape};
-use impacting_cantilever::golden::{self, GoldenRoots};
-use impacting_cantilever::numerics::Quadrature;
-use impacting_cantilever::scenes::spectrum;
+use impacting_cantilever::base::golden::{self, GoldenRoots};
+use impacting_cantilever::base::numerics::Quadrature;
+use impacting_cantilever::model::continuum::{self, ModeShape};
+use impacting_cantilever::results::scenes::spectrum;
 
 /// The accuracy target for roots.
 const ROOT_TOL: f64 = 1e-13;

@@ -1,11 +1,11 @@
 //! Stiffness matching (§2.3): the finite-element beam against the continuum, and the
 //! Galerkin model's convergence at fixed k against it (code-to-code).
 
-use impacting_cantilever::continuum;
-use impacting_cantilever::convergence::{self, Discretisation, Needed, Setup, Study};
-use impacting_cantilever::fe::FeBeam;
-use impacting_cantilever::galerkin::first_modal_stiffness;
-use impacting_cantilever::verification::observed_order;
+use impacting_cantilever::analysis::convergence::{self, Discretisation, Needed, Setup, Study};
+use impacting_cantilever::base::verification::observed_order;
+use impacting_cantilever::model::continuum;
+use impacting_cantilever::model::fe::FeBeam;
+use impacting_cantilever::model::galerkin::first_modal_stiffness;
 
 #[test]
 fn element_eigenvalues_converge_to_eq_3_with_order_four() {

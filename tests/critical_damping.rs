@@ -4,9 +4,9 @@
 //! pair as a 2 × 2 block. Checked here: the flow against an independent matrix exponential
 //! at the critical points, and whole simulations continuous across them.
 
-use impacting_cantilever::galerkin::{GalerkinModel, Region};
-use impacting_cantilever::problems::{self, Forced};
-use impacting_cantilever::sim::{Energy, Events, Simulator, TipMax};
+use impacting_cantilever::engine::sim::{Energy, Events, Simulator, TipMax};
+use impacting_cantilever::model::galerkin::{GalerkinModel, Region};
+use impacting_cantilever::model::problems::{self, Forced};
 use nalgebra::DVector;
 
 mod common;
@@ -22,8 +22,8 @@ fn case(zeta1: f64) -> Forced {
 
 /// ζ₁ at which free mode i is critically damped: C_ii = γk_i = 2√k_i with γ = 2ζ₁/(β₁⁻)².
 fn free_critical(i: usize) -> f64 {
-    let b1 = impacting_cantilever::continuum::free_root(1).unwrap();
-    let bi = impacting_cantilever::continuum::free_root(i).unwrap();
+    let b1 = impacting_cantilever::model::continuum::free_root(1).unwrap();
+    let bi = impacting_cantilever::model::continuum::free_root(i).unwrap();
     (b1 / bi).powi(2)
 }
 
@@ -97,7 +97,7 @@ fn the_flow_matches_the_matrix_exponential_at_critical_damping() {
         let z = free_critical(i);
         let m = case(z).model().unwrap();
         for region in [Region::Free, Region::Contact] {
-            let flow = impacting_cantilever::flow::RegionFlow::new(&m, region).unwrap();
+            let flow = impacting_cantilever::engine::flow::RegionFlow::new(&m, region).unwrap();
             let x0 = DVector::from_fn(20, |r, _| {
                 0.3 * ((r as f64 + 1.0) * 1.7).sin() / (1.0 + r as f64)
             });
@@ -166,7 +166,8 @@ fn simulations_are_continuous_across_critical_damping() {
     for (i, z) in contact.iter().rev().take(4).enumerate() {
         // at a contact critical point the contact flow carries the pair as a block
         let m = case(*z).model().unwrap();
-        let flow = impacting_cantilever::flow::RegionFlow::new(&m, Region::Contact).unwrap();
+        let flow =
+            impacting_cantilever::engine::flow::RegionFlow::new(&m, Region::Contact).unwrap();
         assert_eq!(flow.blocks(), 1, "contact pair {}: ζ₁ = {z}", i + 1);
         criticals.push((format!("contact pair {}", i + 1), *z));
     }

@@ -2,8 +2,8 @@
 //! synthetic pairs whose answer is known (inside, outside, added, removed, unit changed,
 //! malformed), and on the committed published numbers against themselves.
 
-use impacting_cantilever::diff::{self, Change};
-use impacting_cantilever::report::{KeyNumbers, Uncertainty};
+use impacting_cantilever::base::report::{KeyNumbers, Uncertainty};
+use impacting_cantilever::results::diff::{self, Change};
 use serde_json::json;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -215,7 +215,7 @@ fn the_published_numbers_agree_with_themselves_and_read_back_exactly() {
         assert_eq!(set.numbers.0.len(), body.len(), "{}", set.scene);
         for ((key, value), line) in set.numbers.0.iter().zip(&body) {
             assert!(line.starts_with(&format!("{key} = ")), "{line}");
-            if let impacting_cantilever::report::KeyValue::Float(c) = value {
+            if let impacting_cantilever::base::report::KeyValue::Float(c) = value {
                 let printed = format!("{:.*e}", c.digits - 1, c.value);
                 assert!(line.contains(&printed), "{line} vs {printed}");
                 assert!(line.ends_with(&c.unit), "{line}");

@@ -2,11 +2,11 @@
 //! against quadrature of the contact force on the exact solution, and identities that
 //! hold whatever the dynamics.
 
-use impacting_cantilever::energetic::{orbit_coefficient, Coefficient, ContactWork};
-use impacting_cantilever::galerkin::Region;
-use impacting_cantilever::numerics::Quadrature;
-use impacting_cantilever::problems;
-use impacting_cantilever::sim::{Observer, SegmentView, Simulator};
+use impacting_cantilever::analysis::energetic::{orbit_coefficient, Coefficient, ContactWork};
+use impacting_cantilever::base::numerics::Quadrature;
+use impacting_cantilever::engine::sim::{Observer, SegmentView, Simulator};
+use impacting_cantilever::model::galerkin::Region;
+use impacting_cantilever::model::problems;
 use nalgebra::DVector;
 
 /// ∫ F_c η̇₁ dt over the contact segments by composite Gauss–Legendre quadrature of the
@@ -140,7 +140,7 @@ impl Observer for Many<'_, '_> {
     fn begin(
         &mut self,
         sim: &Simulator,
-        clock: &impacting_cantilever::sim::Clock,
+        clock: &impacting_cantilever::engine::sim::Clock,
         x: &DVector<f64>,
     ) {
         for o in self.0.iter_mut() {
@@ -152,7 +152,7 @@ impl Observer for Many<'_, '_> {
             o.segment(seg);
         }
     }
-    fn event(&mut self, e: &impacting_cantilever::sim::EventView) {
+    fn event(&mut self, e: &impacting_cantilever::engine::sim::EventView) {
         for o in self.0.iter_mut() {
             o.event(e);
         }

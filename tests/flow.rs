@@ -1,8 +1,8 @@
 //! Code verification of the exact region flow (eq 36) against nalgebra's matrix
 //! exponential of an augmented system that generates the forcing itself.
 
-use impacting_cantilever::flow::RegionFlow;
-use impacting_cantilever::galerkin::{self, Forcing, GalerkinModel, GalerkinParams, Region};
+use impacting_cantilever::engine::flow::RegionFlow;
+use impacting_cantilever::model::galerkin::{self, Forcing, GalerkinModel, GalerkinParams, Region};
 use nalgebra::DVector;
 
 mod common;

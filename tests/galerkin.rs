@@ -1,8 +1,8 @@
 //! Code verification of the Galerkin model (§2.2, §5.1): matrices, forcing projection,
 //! the corrected eq (37) amplitude, and the K⁺ eigenvalues of Fig 2.
 
-use impacting_cantilever::continuum;
-use impacting_cantilever::galerkin::{
+use impacting_cantilever::model::continuum;
+use impacting_cantilever::model::galerkin::{
     self, Forcing, GalerkinModel, GalerkinParams, Region, SpatialProfile,
 };
 use nalgebra::{DVector, SymmetricEigen};
@@ -232,7 +232,7 @@ fn sign_convention_of_phi() {
 /// round-off), and mode 1's free dynamics do not depend on N.
 #[test]
 fn the_free_tip_amplitude_does_not_depend_on_the_truncation() {
-    use impacting_cantilever::problems;
+    use impacting_cantilever::model::problems;
     let a1 = problems::figure4(1).model().unwrap().free_tip_amplitude();
     for n in [2, 3, 10, 40] {
         let an = problems::figure4(n).model().unwrap().free_tip_amplitude();
@@ -243,9 +243,9 @@ fn the_free_tip_amplitude_does_not_depend_on_the_truncation() {
 
 #[test]
 fn the_quoted_k1_is_the_first_modal_stiffness_to_its_printed_figures() {
-    let k1 = impacting_cantilever::galerkin::first_modal_stiffness();
+    let k1 = impacting_cantilever::model::galerkin::first_modal_stiffness();
     assert!((k1 - 12.3624).abs() <= 0.5e-4, "{k1}");
-    assert!(impacting_cantilever::report::unit_meaning("k₁")
+    assert!(impacting_cantilever::base::report::unit_meaning("k₁")
         .unwrap()
         .contains("12.3624"));
 }

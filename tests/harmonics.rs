@@ -1,10 +1,10 @@
 //! The exact harmonic spectrum of the tip velocity: a closed form for the linear response,
 //! and a discrete Fourier transform of dense samples for a multi-tap orbit.
 
-use impacting_cantilever::harmonics::TipHarmonics;
-use impacting_cantilever::orbit::{self, OrbitKind};
-use impacting_cantilever::problems;
-use impacting_cantilever::sim::{Dense, Simulator};
+use impacting_cantilever::analysis::harmonics::TipHarmonics;
+use impacting_cantilever::analysis::orbit::{self, OrbitKind};
+use impacting_cantilever::engine::sim::{Dense, Simulator};
+use impacting_cantilever::model::problems;
 use nalgebra::DVector;
 use num_complex::Complex64;
 
@@ -13,7 +13,7 @@ fn the_linear_response_is_one_harmonic() {
     // stop out of reach: on the forced response v(t) = Re(iωP e^{iωt}), so c₁ = iωP and
     // every other harmonic is zero — to round-off of the sum of O(N) terms
     let sim = Simulator::new(problems::out_of_reach(10, 0.01, 1.7).model().unwrap()).unwrap();
-    let flow = sim.flow(impacting_cantilever::galerkin::Region::Free);
+    let flow = sim.flow(impacting_cantilever::model::galerkin::Region::Free);
     let x0 = flow.particular(0.0);
     let mut h = TipHarmonics::new(6);
     sim.run(&x0, 3, &mut h).unwrap();
@@ -51,7 +51,7 @@ fn dft(
                 .samples
                 .iter()
                 .map(|&(t, _, v, _)| {
-                    v * impacting_cantilever::numerics::polar(1.0, -(n as f64) * omega * t)
+                    v * impacting_cantilever::base::numerics::polar(1.0, -(n as f64) * omega * t)
                 })
                 .sum::<Complex64>()
                 * (2.0 / per_period as f64)

@@ -16,8 +16,8 @@
 //! A custom harness (libtest-mimic) rather than `#[test]` functions, so the trials come from
 //! the scene registry itself: a new scene is checked without a line here.
 
-use impacting_cantilever::scene::{Entry, Resolution, Silent};
-use impacting_cantilever::scenes;
+use impacting_cantilever::results::scene::{Entry, Resolution, Silent};
+use impacting_cantilever::results::scenes;
 use libtest_mimic::{Arguments, Failed, Trial};
 use std::time::Instant;
 

@@ -1,9 +1,9 @@
 //! The modal restitution laws (§3–4): every identity the paper states or implies.
 
-use impacting_cantilever::restitution::{
+use impacting_cantilever::model::restitution::{
     self, collocation, equally_spaced_points, impulse_response, stiffness_limit,
 };
-use impacting_cantilever::{asymptotics, continuum, galerkin};
+use impacting_cantilever::model::{asymptotics, continuum, galerkin};
 use nalgebra::{DMatrix, DVector, SymmetricEigen};
 
 /// Deterministic test vectors (no RNG dependency): smooth but non-special.
@@ -216,7 +216,7 @@ fn effective_restitution_against_the_exact_one_mode_ratio() {
         .collect();
     let lx: Vec<f64> = eps.iter().map(|e| e.ln()).collect();
     let ly: Vec<f64> = err.iter().map(|e| e.ln()).collect();
-    let order = impacting_cantilever::verification::fitted_slope(&lx, &ly);
+    let order = impacting_cantilever::base::verification::fitted_slope(&lx, &ly);
     assert!((order - 2.0).abs() < 0.1, "order {order}");
     // the two-term expansion matches up to its remainder, relatively O((k₁ε)²) (measured
     // 1.2e-5 at ε = 1e-3, so 20ε²), plus the round-off of r_e − exact, two numbers near 1

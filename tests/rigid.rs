@@ -1,11 +1,11 @@
 //! The rigid-impact N-mode model: 1-DOF closed forms, the chattering policy, and the
 //! compliant model's convergence to it as k → ∞ (Nordmark).
 
-use impacting_cantilever::galerkin::{self, GalerkinModel, GalerkinParams};
-use impacting_cantilever::problems;
-use impacting_cantilever::restitution::impulse_response;
-use impacting_cantilever::rigid::{Outcome, RigidEvent, RigidImpact};
-use impacting_cantilever::sim::Simulator;
+use impacting_cantilever::engine::rigid::{Outcome, RigidEvent, RigidImpact};
+use impacting_cantilever::engine::sim::Simulator;
+use impacting_cantilever::model::galerkin::{self, GalerkinModel, GalerkinParams};
+use impacting_cantilever::model::problems;
+use impacting_cantilever::model::restitution::impulse_response;
 use nalgebra::DVector;
 use std::f64::consts::PI;
 
@@ -14,7 +14,7 @@ fn one_mode(gap: f64, r: f64) -> RigidImpact {
     RigidImpact::new(Simulator::new(m).unwrap(), impulse_response(1, r).unwrap()).unwrap()
 }
 
-fn impacts(run: &impacting_cantilever::rigid::RigidRun) -> Vec<(f64, f64, f64)> {
+fn impacts(run: &impacting_cantilever::engine::rigid::RigidRun) -> Vec<(f64, f64, f64)> {
     run.impacts()
 }
 
@@ -96,7 +96,7 @@ fn compliant_single_mode_converges_to_the_rigid_impact_oscillator() {
     // resonance ω = 2(β₁⁻)² where the approach is much slower. The (1,1) orbit's impact
     // velocity approaches the rigid one (r = 1, the compliant contact's limit) like k^(−1/2),
     // the order of the contact duration π/√k.
-    use impacting_cantilever::orbit::{self, OrbitKind};
+    use impacting_cantilever::analysis::orbit::{self, OrbitKind};
     let case = |k_over_k1| problems::Forced {
         k_over_k1,
         omega_over_w1: 1.5,
@@ -125,7 +125,7 @@ fn compliant_single_mode_converges_to_the_rigid_impact_oscillator() {
         .collect();
     let lx: Vec<f64> = ks.iter().map(|k| k.ln()).collect();
     let ly: Vec<f64> = gaps.iter().map(|g| g.ln()).collect();
-    let rate = impacting_cantilever::verification::fitted_slope(&lx, &ly);
+    let rate = impacting_cantilever::base::verification::fitted_slope(&lx, &ly);
     // measured −0.51 over these three decades
     assert!((rate + 0.5).abs() < 0.1, "rate {rate}, gaps {gaps:?}");
 }
@@ -136,7 +136,7 @@ fn multi_mode_chatter_under_a_law_that_moves_the_other_modes_stops_explicitly() 
     // scales the velocity orthogonal to the tip direction (by 2r_e − 1), so an infinite
     // sequence has no constrained limit to stick in. The run stops at the extrapolated
     // accumulation time instead of looping (module doc).
-    use impacting_cantilever::restitution::stiffness_limit;
+    use impacting_cantilever::model::restitution::stiffness_limit;
     let gap = -0.1;
     let m = GalerkinModel::new(GalerkinParams::new(2, 0.0).with_gap(gap)).unwrap();
     let model =
@@ -177,7 +177,7 @@ fn forced(modes: usize, gap: f64, zeta1: f64, omega: f64, k_over_k1: f64) -> Gal
 
 #[test]
 fn the_laws_that_can_stick_are_those_that_leave_the_tangential_velocity_alone() {
-    use impacting_cantilever::restitution::stiffness_limit;
+    use impacting_cantilever::model::restitution::stiffness_limit;
     let sim = |n| Simulator::new(forced(n, 0.0, 0.01, 2.0, 100.0)).unwrap();
     for n in [1, 2, 5] {
         let ir = RigidImpact::new(sim(n), impulse_response(n, 0.6).unwrap()).unwrap();
@@ -245,10 +245,10 @@ fn two_mode_sticking_follows_the_constrained_closed_form() {
             hi = mid
         }
     }
-    let mut stats = impacting_cantilever::sim::Stats::default();
+    let mut stats = impacting_cantilever::engine::sim::Stats::default();
     let (release, state) = rigid.sticking().hold(
         &x0,
-        &impacting_cantilever::sim::Clock::at_cycle(period, 0),
+        &impacting_cantilever::engine::sim::Clock::at_cycle(period, 0),
         20.0 * period,
         1e-13 * period,
         1e-15,
@@ -362,7 +362,7 @@ fn sticking_is_the_limit_of_the_compliant_contact_as_k_grows() {
     // pressed into the stop by its quasi-static penetration d − d₀ = 4λ/k (so that its
     // barely damped stop mode is not set ringing), rests in the stop and leaves it near the
     // same time, the closer the stiffer the stop.
-    use impacting_cantilever::sim::{Clock, Events};
+    use impacting_cantilever::engine::sim::{Clock, Events};
     let (gap, n) = (-0.3, 3);
     let base = forced(n, gap, 0.01, 1.3, 100.0);
     let sim = Simulator::new(base).unwrap();
@@ -372,7 +372,7 @@ fn sticking_is_the_limit_of_the_compliant_contact_as_k_grows() {
         .sticking()
         .project(&DVector::from_vec(vec![gap / 6.0, 0.0, 0.0, 0.0, 0.0, 0.0]));
     assert!(rigid.sticking().push(&x0, 0.0) > 0.0);
-    let mut stats = impacting_cantilever::sim::Stats::default();
+    let mut stats = impacting_cantilever::engine::sim::Stats::default();
     let (release, _) = rigid.sticking().hold(
         &x0,
         &Clock::at_cycle(period, 0),
@@ -436,7 +436,7 @@ fn a_generic_impact_oscillator_bounces_as_the_closed_form_says() {
     // ẍ + 4x = 0 (ω₀ = 2), tip gain 3, stop at gx = 0, r = 0.7: every flight lasts π/ω₀
     // whatever its amplitude, and each impact scales the speed by r — any k and g, not only
     // the cantilever's mode 1
-    use impacting_cantilever::galerkin::Oscillator;
+    use impacting_cantilever::model::galerkin::Oscillator;
     let o = Oscillator {
         stiffness: 4.0,
         damping: 0.0,
@@ -458,7 +458,7 @@ fn a_generic_impact_oscillator_bounces_as_the_closed_form_says() {
     }
     // a forced oscillator starts from any time and forcing phase: a run split at an
     // arbitrary clock reaches the same state as one run through it
-    use impacting_cantilever::sim::Clock;
+    use impacting_cantilever::engine::sim::Clock;
     let forced = RigidImpact::oscillator(
         &Oscillator {
             damping: 0.1,
@@ -487,7 +487,7 @@ fn a_generic_impact_oscillator_bounces_as_the_closed_form_says() {
 
 #[test]
 fn an_oscillator_has_no_beam_profile() {
-    use impacting_cantilever::galerkin::Oscillator;
+    use impacting_cantilever::model::galerkin::Oscillator;
     let m = GalerkinModel::oscillator(&Oscillator {
         stiffness: 1.0,
         damping: 0.0,

@@ -3,11 +3,11 @@
 //! rather than re-accepted. The numbers at the book's resolution are in `published.rs`
 //! (scenes that are cheap at full resolution are snapshotted there only).
 
-use impacting_cantilever::provenance::Provenance;
-use impacting_cantilever::scene::{self, Resolution, Scene, SceneOutput, Silent};
-use impacting_cantilever::scenes::fig4::Fig4;
-use impacting_cantilever::scenes::fig5::Fig5;
-use impacting_cantilever::scenes::{self, fig2, spectrum};
+use impacting_cantilever::base::provenance::Provenance;
+use impacting_cantilever::results::scene::{self, Resolution, Scene, SceneOutput, Silent};
+use impacting_cantilever::results::scenes::fig4::Fig4;
+use impacting_cantilever::results::scenes::fig5::Fig5;
+use impacting_cantilever::results::scenes::{self, fig2, spectrum};
 use std::sync::OnceLock;
 
 /// A scene's data at the tests' resolution, computed once for every test that reads it
@@ -173,7 +173,7 @@ fn verdict_numbers_quoted_in_the_book() {
 
 #[test]
 fn work_precision_methods_agree_and_the_exact_one_is_at_round_off() {
-    use impacting_cantilever::scenes::work_precision::{compute, WorkPrecisionParams};
+    use impacting_cantilever::results::scenes::work_precision::{compute, WorkPrecisionParams};
     let d = compute(&WorkPrecisionParams::test()).unwrap();
     assert!(
         d.points.iter().all(|p| p.same_sequence),
@@ -198,7 +198,7 @@ fn work_precision_methods_agree_and_the_exact_one_is_at_round_off() {
 
 #[test]
 fn figure_4_verdicts_and_their_evidence() {
-    use impacting_cantilever::orbit::OrbitKind;
+    use impacting_cantilever::analysis::orbit::OrbitKind;
     let d = cached::<Fig4>(&FIG4);
     for p in &d.panels {
         // N = 1, 2, 10 reproduce the paper; N = 3 does not (a known, documented mismatch:
@@ -247,7 +247,7 @@ fn figure_4_verdicts_and_their_evidence() {
 
 #[test]
 fn figure_5_is_deterministic_whatever_the_thread_count() {
-    use impacting_cantilever::scenes::fig5::{compute, Fig5Params};
+    use impacting_cantilever::results::scenes::fig5::{compute, Fig5Params};
     let p = Fig5Params {
         modes: vec![1, 3],
         points: 4,
@@ -276,7 +276,7 @@ fn figure_5_is_deterministic_whatever_the_thread_count() {
 
 #[test]
 fn figure_5_claims_at_test_resolution() {
-    use impacting_cantilever::orbit::OrbitKind;
+    use impacting_cantilever::analysis::orbit::OrbitKind;
     let d = cached::<Fig5>(&FIG5);
     let c = &d.claims;
     // "for small k each model predicts a stable (1,1) orbit with quantitative agreement".
@@ -321,7 +321,7 @@ fn figure_5_claims_at_test_resolution() {
 
 #[test]
 fn figure_3abc_one_contact_against_the_impact_laws() {
-    use impacting_cantilever::scenes::fig3abc::{compute, Fig3abcParams};
+    use impacting_cantilever::results::scenes::fig3abc::{compute, Fig3abcParams};
     let d = compute(&Fig3abcParams::default()).unwrap();
     let n1 = d.series.iter().find(|s| s.modes == 1).unwrap();
     let one = n1.one_mode.as_ref().unwrap();
@@ -329,7 +329,7 @@ fn figure_3abc_one_contact_against_the_impact_laws() {
         // the exact simulator against the closed-form 1-DOF passage: round-off
         assert!((sim - exact).abs() < 1e-12, "{sim} vs {exact}");
     }
-    let k1 = impacting_cantilever::galerkin::first_modal_stiffness();
+    let k1 = impacting_cantilever::model::galerkin::first_modal_stiffness();
     for s in &d.series {
         // the gap to [R]_N(r_e) closes like ε², the first-order theory's remainder. The
         // fit runs over ε ∈ [1e-4, 1e-3], where the next term of the expansion is at most
@@ -347,7 +347,7 @@ fn figure_3abc_one_contact_against_the_impact_laws() {
         let k = d.params.eps[0].powi(-2);
         let n = s.modes as f64;
         let mean_kj: f64 = (1..=s.modes)
-            .map(|j| impacting_cantilever::continuum::modal_stiffness(j).unwrap())
+            .map(|j| impacting_cantilever::model::continuum::modal_stiffness(j).unwrap())
             .sum::<f64>()
             / n;
         let bound = (mean_kj + d.params.alpha.powi(2) + k1) / (k * n);
@@ -365,7 +365,7 @@ fn figure_3abc_one_contact_against_the_impact_laws() {
 
 #[test]
 fn figure_3d_profiles_converge_in_l2_to_the_pre_impact_profile_but_not_uniformly() {
-    use impacting_cantilever::scenes::fig3d::compute;
+    use impacting_cantilever::results::scenes::fig3d::compute;
     let d = compute(&Default::default()).unwrap();
     for p in d.profiles.iter().filter(|p| p.law == "stiffness-limit") {
         let n = p.modes as f64;
@@ -380,9 +380,13 @@ fn figure_3d_profiles_converge_in_l2_to_the_pre_impact_profile_but_not_uniformly
 
 #[test]
 fn figure_6_energetic_restitution_and_the_one_mode_model() {
-    use impacting_cantilever::orbit::OrbitKind;
-    use impacting_cantilever::scenes::fig6::{compute, Fig6Params, Reading};
-    let d = compute(&Fig6Params::test(), &impacting_cantilever::scene::Silent).unwrap();
+    use impacting_cantilever::analysis::orbit::OrbitKind;
+    use impacting_cantilever::results::scenes::fig6::{compute, Fig6Params, Reading};
+    let d = compute(
+        &Fig6Params::test(),
+        &impacting_cantilever::results::scene::Silent,
+    )
+    .unwrap();
     let case = |panel: &str, reading: Reading| {
         d.cases
             .iter()
@@ -426,12 +430,14 @@ fn figure_6_energetic_restitution_and_the_one_mode_model() {
 
 #[test]
 fn the_energetic_restitution_map_is_converged_where_it_is_coloured_and_thread_independent() {
-    use impacting_cantilever::scenes::energetic_map::{compute, matched_modes, Cell, MapParams};
+    use impacting_cantilever::results::scenes::energetic_map::{
+        compute, matched_modes, Cell, MapParams,
+    };
     // stiffness matching: 4β_N³ ≥ 30k, with β_N ≈ (N − ½)π for large N
     assert_eq!(matched_modes(10.0).unwrap(), 10);
     let n = matched_modes(1e4).unwrap();
     let beta = |n: usize| (n as f64 - 0.5) * std::f64::consts::PI;
-    let k = 1e4 * impacting_cantilever::galerkin::first_modal_stiffness();
+    let k = 1e4 * impacting_cantilever::model::galerkin::first_modal_stiffness();
     assert!(4.0 * beta(n).powi(3) >= 30.0 * k * 0.999 && 4.0 * beta(n - 1).powi(3) < 30.0 * k);
     let p = MapParams::test();
     let run = |threads| {
@@ -439,7 +445,7 @@ fn the_energetic_restitution_map_is_converged_where_it_is_coloured_and_thread_in
             .num_threads(threads)
             .build()
             .unwrap()
-            .install(|| compute(&p, &impacting_cantilever::scene::Silent).unwrap())
+            .install(|| compute(&p, &impacting_cantilever::results::scene::Silent).unwrap())
     };
     let (one, two) = (run(1), run(2));
     for (a, b) in one.points.iter().zip(&two.points) {
@@ -463,9 +469,9 @@ fn the_energetic_restitution_map_is_converged_where_it_is_coloured_and_thread_in
     let Cell::Value(r) = b.cell else {
         panic!("{:?}", b.cell)
     };
-    let f6 = impacting_cantilever::energetic::orbit_coefficient(
-        &impacting_cantilever::sim::Simulator::new(
-            impacting_cantilever::problems::figure6b(20)
+    let f6 = impacting_cantilever::analysis::energetic::orbit_coefficient(
+        &impacting_cantilever::engine::sim::Simulator::new(
+            impacting_cantilever::model::problems::figure6b(20)
                 .model()
                 .unwrap(),
         )
@@ -480,9 +486,13 @@ fn the_energetic_restitution_map_is_converged_where_it_is_coloured_and_thread_in
 
 #[test]
 fn figure_9_contacts_and_spectrum() {
-    use impacting_cantilever::orbit::OrbitKind;
-    use impacting_cantilever::scenes::fig9::{compute, Fig9Params};
-    let d = compute(&Fig9Params::test(), &impacting_cantilever::scene::Silent).unwrap();
+    use impacting_cantilever::analysis::orbit::OrbitKind;
+    use impacting_cantilever::results::scenes::fig9::{compute, Fig9Params};
+    let d = compute(
+        &Fig9Params::test(),
+        &impacting_cantilever::results::scene::Silent,
+    )
+    .unwrap();
     // at d₀ = 0: four contact intervals, five penetration maxima, for every truncation
     assert_eq!(d.count.kind, OrbitKind::Periodic { m: 1, n: 4 });
     assert_eq!(d.count.maxima, Some(5.0));

@@ -2,10 +2,10 @@
 //! the converged orbit against the brute-force transient, and the Floquet multipliers
 //! against the decay of a transient started near the orbit (Figure 4's parameters).
 
-use impacting_cantilever::orbit::{relative_residual, settle};
-use impacting_cantilever::problems;
-use impacting_cantilever::shooting::{self, PeriodicOrbit};
-use impacting_cantilever::sim::Simulator;
+use impacting_cantilever::analysis::orbit::{relative_residual, settle};
+use impacting_cantilever::analysis::shooting::{self, PeriodicOrbit};
+use impacting_cantilever::engine::sim::Simulator;
+use impacting_cantilever::model::problems;
 use nalgebra::DVector;
 
 fn fig4(n: usize) -> Simulator {
@@ -94,8 +94,8 @@ fn two_modes_period_one_orbit_is_unstable_by_period_doubling() {
 fn first_entry(
     sim: &Simulator,
     x: &DVector<f64>,
-) -> (DVector<f64>, impacting_cantilever::sim::Clock) {
-    let mut events = impacting_cantilever::sim::Events::with_states();
+) -> (DVector<f64>, impacting_cantilever::engine::sim::Clock) {
+    let mut events = impacting_cantilever::engine::sim::Events::with_states();
     sim.run(x, 1, &mut events).unwrap();
     let e = events
         .events
@@ -107,7 +107,7 @@ fn first_entry(
 
 #[test]
 fn impact_section_shooting_finds_the_stroboscopic_orbit_and_its_multipliers() {
-    use impacting_cantilever::impact_section;
+    use impacting_cantilever::analysis::impact_section;
     // Figure 4's N = 3 (1,1), N = 10 (1,1) and N = 2 (2,4) orbits
     for (n, m) in [(3, 1), (10, 1), (2, 2)] {
         let sim = fig4(n);
@@ -116,7 +116,7 @@ fn impact_section_shooting_finds_the_stroboscopic_orbit_and_its_multipliers() {
         // start off the orbit (1% in every coordinate, and in the entry's phase) so that
         // Newton has work to do
         let guess = &entry * 1.01;
-        let start = impacting_cantilever::sim::Clock {
+        let start = impacting_cantilever::engine::sim::Clock {
             offset: clock.offset * 1.01,
             ..clock
         };
@@ -125,7 +125,7 @@ fn impact_section_shooting_finds_the_stroboscopic_orbit_and_its_multipliers() {
         assert_eq!((o.period_m, o.impacts_n), (m, strobe.impacts_n));
         // the same orbit: the converged section point is one of the strobe orbit's entries
         let x = DVector::from_vec(o.state.clone());
-        let mut events = impacting_cantilever::sim::Events::with_states();
+        let mut events = impacting_cantilever::engine::sim::Events::with_states();
         sim.run(&DVector::from_vec(strobe.state.clone()), m, &mut events)
             .unwrap();
         let closest = events

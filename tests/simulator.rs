@@ -1,10 +1,10 @@
 //! Code verification of the exact simulator and of the independent reference integrator:
 //! closed forms, certified contact detection, energy balance, cross-verification.
 
-use impacting_cantilever::dopri5::{self as reference, Tolerances};
-use impacting_cantilever::galerkin::{self, Forcing, GalerkinModel, GalerkinParams, Region};
-use impacting_cantilever::problems::{self, linear_response as oscillator};
-use impacting_cantilever::sim::{Dense, Energy, Events, Simulator, Strobe, TipMax};
+use impacting_cantilever::engine::dopri5::{self as reference, Tolerances};
+use impacting_cantilever::engine::sim::{Dense, Energy, Events, Simulator, Strobe, TipMax};
+use impacting_cantilever::model::galerkin::{self, Forcing, GalerkinModel, GalerkinParams, Region};
+use impacting_cantilever::model::problems::{self, linear_response as oscillator};
 use nalgebra::DVector;
 use std::f64::consts::PI;
 
@@ -545,7 +545,7 @@ fn chained_runs_equal_one_long_run() {
     let mut x = x0;
     let mut clock = sim.clock_at_cycle(0);
     for j in 1..=57 {
-        let until = impacting_cantilever::sim::Clock::at_time(
+        let until = impacting_cantilever::engine::sim::Clock::at_time(
             sim.period(),
             j as f64 * 40.0 * sim.period() / 57.0,
         );
@@ -564,13 +564,13 @@ fn a_start_at_rest_on_the_stop_begins_in_contact() {
     let m = fig4(3);
     assert_eq!(
         m.starting_region(&DVector::zeros(6), 0.0),
-        impacting_cantilever::galerkin::Region::Contact
+        impacting_cantilever::model::galerkin::Region::Contact
     );
     // half a period later the forcing pulls outward: the same state starts in free flight
     let half = PI / (2.0 * w1());
     assert_eq!(
         m.starting_region(&DVector::zeros(6), half),
-        impacting_cantilever::galerkin::Region::Free
+        impacting_cantilever::model::galerkin::Region::Free
     );
     let sim = Simulator::new(m).unwrap();
     let mut t = Events::default();

@@ -2,11 +2,11 @@
 //! identities, the energy it loses at a switch, and its convergence to the Galerkin model's
 //! limit at fixed k.
 
-use impacting_cantilever::continuum::{self, ModeShape};
-use impacting_cantilever::convergence::{self, two_basis_runs, Discretisation, Setup};
-use impacting_cantilever::galerkin::{first_modal_stiffness, GalerkinParams, Region};
-use impacting_cantilever::numerics::Quadrature;
-use impacting_cantilever::two_basis::{TwoBasisModel, TwoBasisState};
+use impacting_cantilever::analysis::convergence::{self, two_basis_runs, Discretisation, Setup};
+use impacting_cantilever::base::numerics::Quadrature;
+use impacting_cantilever::engine::two_basis::{TwoBasisModel, TwoBasisState};
+use impacting_cantilever::model::continuum::{self, ModeShape};
+use impacting_cantilever::model::galerkin::{first_modal_stiffness, GalerkinParams, Region};
 use nalgebra::{DMatrix, DVector};
 
 fn model(n: usize, k_over_k1: f64, zeta1: f64) -> TwoBasisModel {

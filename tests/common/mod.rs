@@ -1,6 +1,6 @@
 //! Helpers shared by the integration tests.
 
-use impacting_cantilever::galerkin::{GalerkinModel, Region};
+use impacting_cantilever::model::galerkin::{GalerkinModel, Region};
 use nalgebra::{DMatrix, DVector};
 
 /// ż = Bz for z = [x; cos ωt; sin ωt; 1]: a region's system ẋ = Ax + b̂ cos ωt + ĉ with its

@@ -3,11 +3,11 @@
 //! writes it).
 
 use crate::progress;
-use impacting_cantilever::atlas::{self, AtlasParams, Partial, Shard};
+use impacting_cantilever::analysis::atlas::{self, AtlasParams, Partial, Shard};
+use impacting_cantilever::base::provenance::Provenance;
 use impacting_cantilever::error::{Error, ParameterError};
-use impacting_cantilever::provenance::Provenance;
-use impacting_cantilever::scene::{self, Progress, Resolution, Scene};
-use impacting_cantilever::scenes::atlas::Atlas;
+use impacting_cantilever::results::scene::{self, Progress, Resolution, Scene};
+use impacting_cantilever::results::scenes::atlas::Atlas;
 use std::path::{Path, PathBuf};
 
 /// The grid and search of the atlas (defaults: the book's).
@@ -111,7 +111,7 @@ pub fn merge(files: &[PathBuf], out: &Path) -> Result<(), Error> {
         &data,
         Provenance::of_scene("atlas", resolution),
     )?;
-    let spec = impacting_cantilever::scenes::find(Atlas::NAME)?;
+    let spec = impacting_cantilever::results::scenes::find(Atlas::NAME)?;
     scene::write(spec, &output, out)
 }
 

@@ -2,10 +2,10 @@
 //! value with its uncertainty and how it was obtained, its unit, the parameters, the
 //! method, the build that computed it, and how to cite the software and the paper.
 
-use impacting_cantilever::citation;
+use impacting_cantilever::base::report::{unit_meaning, KeyNumbers, KeyValue};
 use impacting_cantilever::error::ParameterError;
-use impacting_cantilever::report::{unit_meaning, KeyNumbers, KeyValue};
-use impacting_cantilever::scene::{self, Entry, Resolution, SceneOutput};
+use impacting_cantilever::results::citation;
+use impacting_cantilever::results::scene::{self, Entry, Resolution, SceneOutput};
 
 /// What `cite` prints: the computed scene and the keys asked for.
 pub struct Citation {
@@ -20,9 +20,9 @@ pub struct Citation {
 pub fn run(
     name: &str,
     key: Option<&str>,
-    progress: &dyn impacting_cantilever::scene::Progress,
+    progress: &dyn impacting_cantilever::results::scene::Progress,
 ) -> Result<Citation, super::Failure> {
-    let spec = impacting_cantilever::scenes::find(name)?;
+    let spec = impacting_cantilever::results::scenes::find(name)?;
     let out = spec.run(Resolution::Book, progress)?;
     let keys = match key {
         None => out.key_numbers.clone(),

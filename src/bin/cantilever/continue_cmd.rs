@@ -1,9 +1,9 @@
 //! `cantilever continue`: a branch of periodic orbits of the compliant model continued in
-//! k or ω, with its bifurcations ([`impacting_cantilever::continuation`]).
+//! k or ω, with its bifurcations ([`impacting_cantilever::analysis::continuation`]).
 
 use crate::orbit;
 use crate::simulate;
-use impacting_cantilever::continuation::{self, Branch, Family, Parameter, Settings};
+use impacting_cantilever::analysis::continuation::{self, Branch, Family, Parameter, Settings};
 use impacting_cantilever::error::{Error, ParameterError};
 use nalgebra::DVector;
 

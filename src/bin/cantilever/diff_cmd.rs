@@ -1,13 +1,13 @@
 //! `cantilever diff OLD NEW`: which key numbers moved between two runs, each judged against
-//! its uncertainty ([`impacting_cantilever::diff`]).
+//! its uncertainty ([`impacting_cantilever::results::diff`]).
 //!
 //! OLD and NEW may each be a `key_numbers.json`, a scene's output folder (holding one), a
 //! folder of scene folders (`out/`, `book/src/generated/`), an insta snapshot or a folder
 //! of them, or the word `published`: the committed published numbers this build was made
 //! with.
 
-use impacting_cantilever::diff::{self, SceneKeys};
 use impacting_cantilever::error::ParameterError;
+use impacting_cantilever::results::diff::{self, SceneKeys};
 use std::io::Read;
 use std::path::Path;
 
@@ -47,7 +47,7 @@ fn load_file(which: &str, path: &Path) -> Result<SceneKeys, ParameterError> {
         } else {
             (stem, None)
         };
-        let numbers = impacting_cantilever::report::KeyNumbers::from_snapshot(&text)
+        let numbers = impacting_cantilever::base::report::KeyNumbers::from_snapshot(&text)
             .map_err(|e| bad(format!("a key-number snapshot ({e})")))?;
         return Ok(SceneKeys {
             scene: scene.to_string(),

@@ -16,9 +16,11 @@ mod progress;
 mod simulate;
 
 use clap::{Parser, Subcommand};
+use impacting_cantilever::analysis::convergence;
 use impacting_cantilever::error::{self, ParameterError};
-use impacting_cantilever::scene::{self, Resolution};
-use impacting_cantilever::{continuum, convergence, galerkin, scenes};
+use impacting_cantilever::model::{continuum, galerkin};
+use impacting_cantilever::results::scene::{self, Resolution};
+use impacting_cantilever::results::scenes;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -411,10 +413,10 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::Diff { old, new, json } => {
             let d = diff_cmd::run(&old, &new)?;
             if json {
-                let doc = impacting_cantilever::diff::to_json(&d);
+                let doc = impacting_cantilever::results::diff::to_json(&d);
                 outln!("{}", serde_json::to_string_pretty(&doc).unwrap_or_default());
             } else {
-                emit(&impacting_cantilever::diff::to_text(&d));
+                emit(&impacting_cantilever::results::diff::to_text(&d));
             }
             if d.any_beyond() {
                 Err(Failure::Differs)
@@ -489,7 +491,7 @@ fn book_command(book_dir: &std::path::Path, only: Option<&[String]>) -> Result<(
             e
         })?;
     }
-    let report = impacting_cantilever::book::build_only(
+    let report = impacting_cantilever::results::book::build_only(
         book_dir,
         Resolution::Book,
         only,

@@ -1,11 +1,11 @@
 //! `cantilever orbit`: one periodic orbit of the compliant model by Newton shooting, with
-//! its Floquet multipliers ([`impacting_cantilever::shooting`]).
+//! its Floquet multipliers ([`impacting_cantilever::analysis::shooting`]).
 
 use crate::simulate::{self, ModelKind};
+use impacting_cantilever::analysis::orbit::detect_period;
+use impacting_cantilever::analysis::shooting::{self, PeriodicOrbit};
+use impacting_cantilever::engine::sim::{Simulator, Strobe};
 use impacting_cantilever::error::{Error, ParameterError};
-use impacting_cantilever::orbit::detect_period;
-use impacting_cantilever::shooting::{self, PeriodicOrbit};
-use impacting_cantilever::sim::{Simulator, Strobe};
 
 /// The command's inputs: the model and start of `simulate`, and the orbit's period.
 #[derive(Debug, Clone, clap::Args)]

@@ -1,7 +1,7 @@
 //! Progress bars on a terminal (hidden when stderr is not one: CI, pipes), for the
 //! library's [`Progress`] reports.
 
-use impacting_cantilever::scene::{Progress, Task};
+use impacting_cantilever::results::scene::{Progress, Task};
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 
 /// Bars for every task, stacked.

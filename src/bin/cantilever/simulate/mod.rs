@@ -1,7 +1,7 @@
 //! `cantilever simulate`: the paper's forced simulation (§5.2) — a transient discarded, then
 //! a recorded window: contact events, the period m and contacts per period n, the
 //! certified maximum of the tip, the exact energy budget. The engine is
-//! [`impacting_cantilever::sim`]; the rigid-impact model is [`impacting_cantilever::rigid`].
+//! [`impacting_cantilever::engine::sim`]; the rigid-impact model is [`impacting_cantilever::engine::rigid`].
 //!
 //! Units (stated in `--help` and in the JSON): time and frequency of the non-dimensional
 //! beam (EI = ρA = L = 1); k in units of k₁ = (β₁⁻)⁴, ω in units of (β₁⁻)²; lengths in units
@@ -14,11 +14,11 @@ pub use output::{to_json, to_text};
 pub use run::run;
 
 use impacting_cantilever::error::{self, ParameterError};
-use impacting_cantilever::galerkin::{
+use impacting_cantilever::model::galerkin::{
     self, first_frequency, first_modal_stiffness, Forcing, GalerkinModel, GalerkinParams,
     SpatialProfile,
 };
-use impacting_cantilever::restitution;
+use impacting_cantilever::model::restitution;
 use nalgebra::{DMatrix, DVector};
 use std::path::PathBuf;
 

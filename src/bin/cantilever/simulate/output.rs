@@ -4,10 +4,10 @@
 
 use super::run::Report;
 use super::{ModelKind, SimulateArgs};
+use impacting_cantilever::analysis::orbit::{random_state, SplitMix64};
 use impacting_cantilever::error::{Error, ParameterError};
-use impacting_cantilever::galerkin::{first_frequency, GalerkinModel};
-use impacting_cantilever::orbit::{random_state, SplitMix64};
-use impacting_cantilever::scene::write_atomically;
+use impacting_cantilever::model::galerkin::{first_frequency, GalerkinModel};
+use impacting_cantilever::results::scene::write_atomically;
 use nalgebra::DVector;
 use serde_json::{json, Value};
 use std::path::Path;

@@ -4,15 +4,15 @@
 
 use super::{output, ModelKind, Setup, SimulateArgs};
 use crate::progress::Bars;
-use impacting_cantilever::error::Error;
-use impacting_cantilever::galerkin::Region;
-use impacting_cantilever::orbit::detect_period;
-use impacting_cantilever::rigid::{Outcome, RigidEvent, RigidImpact};
-use impacting_cantilever::scene::Progress;
-use impacting_cantilever::sim::{
+use impacting_cantilever::analysis::orbit::detect_period;
+use impacting_cantilever::engine::rigid::{Outcome, RigidEvent, RigidImpact};
+use impacting_cantilever::engine::sim::{
     Clock, Energy, EnergyBudget, EventView, Observer, SegmentView, Simulator, Strobe, TipMax,
     TipMaximum,
 };
+use impacting_cantilever::error::Error;
+use impacting_cantilever::model::galerkin::Region;
+use impacting_cantilever::results::scene::Progress;
 use nalgebra::DVector;
 use std::time::Instant;
 
@@ -22,7 +22,7 @@ const CHUNK: u64 = 1000;
 /// Reports whole periods as segments pass them: progress without touching the numerics
 /// (it asks for no period boundaries).
 struct Ticker<'a> {
-    task: &'a dyn impacting_cantilever::scene::Task,
+    task: &'a dyn impacting_cantilever::results::scene::Task,
     done: i64,
 }
 

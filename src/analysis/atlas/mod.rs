@@ -1,0 +1,449 @@
+//! The multi-tap atlas: the stable periodic orbits of the forced compliant model (§5.2,
+//! eq (37)'s forcing) over a grid of stop stiffness k and forcing frequency ω — their
+//! period m (in forcing periods) and contacts per period n, and how many coexist.
+//!
+//! **Method.** Each row is one k, swept up in ω. A cell's attractors come from two
+//! sources, every one converged by Newton shooting ([`crate::analysis::shooting`]) to the 1e-12
+//! tolerance, reduced to its least period, and kept only if its Floquet multipliers are
+//! inside the unit circle:
+//! - *continuation*: the previous cell's attractors are the guesses at the next ω
+//!   (natural continuation; an attractor is followed until it loses stability or Newton
+//!   fails, as in an experiment that sweeps the frequency up slowly);
+//! - *seeded starts*: rest and random states of four times the free amplitude, each run
+//!   for a transient and handed to Newton with the period m read off the strobe
+//!   ([`cell`]). A start that reaches no stable orbit of period ≤ max_m is counted as
+//!   unsettled (quasi-periodic, chaotic, a longer period, or a slow transient).
+//!
+//! Orbits found twice (up to a shift along the orbit) are recognised and counted once.
+//!
+//! **Determinism and sharding.** A row depends only on the parameters and its index: its
+//! random starts come from streams seeded by (seed, row, column, start). So the atlas
+//! does not depend on the number of threads, and rows can be computed in separate
+//! processes ([`Shard`]) and merged ([`merge`]) into exactly the unsharded result.
+//!
+//! **Convergence in N.** On every `check_stride`-th row and column, the orbit from rest
+//! is also computed with `check_modes` modes; the chapter reports how often it is one of
+//! the N-mode cell's attractors.
+
+pub mod cell;
+
+use crate::engine::sim::Simulator;
+use crate::error::{self, Error, ParameterError};
+use crate::model::problems::Forced;
+use cell::{CellSearch, Found};
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+/// What the atlas computes.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct AtlasParams {
+    /// N.
+    pub modes: usize,
+    /// k/k₁ range (log-spaced, inclusive).
+    pub k_over_k1_range: (f64, f64),
+    /// Rows (k values).
+    pub k_points: usize,
+    /// ω/(β₁⁻)² range (linear, inclusive).
+    pub omega_range: (f64, f64),
+    /// Columns (ω values).
+    pub omega_points: usize,
+    /// ζ₁.
+    pub zeta1: f64,
+    /// d₀.
+    pub gap: f64,
+    /// Seeded starts per cell (the first at rest).
+    pub starts: usize,
+    /// Transient periods of each start.
+    pub transient: u64,
+    /// Largest period m searched.
+    pub max_period: u64,
+    /// Seed of the random starts.
+    pub seed: u64,
+    /// N of the convergence check.
+    pub check_modes: usize,
+    /// Every `check_stride`-th row and column is checked.
+    pub check_stride: usize,
+    /// Further random starts on checked cells, to estimate how many attractors the cells'
+    /// own starts miss.
+    pub check_starts: usize,
+}
+
+impl AtlasParams {
+    /// The book's atlas: N = 10, k/k₁ 1…10⁴ × ω/(β₁⁻)² 0.5…3 at 128 × 128, Figure 4's
+    /// ζ₁ = 0.01 and d₀ = 0; rest and two random starts per cell; checked against N = 20
+    /// (β₂₀⁺³ > 10⁴k₁: the stiffness-matching criterion holds over the whole range).
+    pub fn book() -> Self {
+        Self {
+            modes: 10,
+            k_over_k1_range: (1.0, 1e4),
+            k_points: 128,
+            omega_range: (0.5, 3.0),
+            omega_points: 128,
+            zeta1: 0.01,
+            gap: 0.0,
+            starts: 3,
+            transient: 300,
+            max_period: 8,
+            seed: 2013,
+            check_modes: 20,
+            check_stride: 16,
+            check_starts: 16,
+        }
+    }
+
+    /// A reduced atlas for the tests: 9 × 9 cells over the same ranges.
+    pub fn test() -> Self {
+        Self {
+            k_points: 9,
+            omega_points: 9,
+            check_stride: 4,
+            check_starts: 4,
+            ..Self::book()
+        }
+    }
+
+    /// Every count in range, the ranges positive and increasing.
+    pub fn validate(&self) -> Result<(), ParameterError> {
+        error::count_in_range("modes N", self.modes, crate::model::galerkin::MAX_MODES)?;
+        error::count_in_range(
+            "check modes",
+            self.check_modes,
+            crate::model::galerkin::MAX_MODES,
+        )?;
+        error::count_in_range("k points", self.k_points, 4096)?;
+        error::count_in_range("omega points", self.omega_points, 4096)?;
+        error::count_in_range("starts per cell", self.starts, 64)?;
+        error::count_in_range("check stride", self.check_stride, 4096)?;
+        error::count_in_range("check starts", self.check_starts, 1024)?;
+        error::count_in_range("max period", self.max_period as usize, 32)?;
+        if !(1..=1_000_000).contains(&self.transient) {
+            return Err(ParameterError::new(
+                "transient periods",
+                self.transient,
+                "1 to 1000000",
+            ));
+        }
+        for (name, (lo, hi)) in [
+            ("k/k₁ range", self.k_over_k1_range),
+            ("ω/(β₁⁻)² range", self.omega_range),
+        ] {
+            if !(lo.is_finite() && hi.is_finite() && lo > 0.0 && hi >= lo) {
+                return Err(ParameterError::new(
+                    name,
+                    format!("{lo}..{hi}"),
+                    "0 < lower ≤ upper, finite",
+                ));
+            }
+        }
+        // the model checks the rest (k, ω, ζ₁, d₀ ranges) with its own messages
+        self.model(self.modes, self.k_over_k1_range.1, self.omega_range.1)?;
+        self.model(self.modes, self.k_over_k1_range.0, self.omega_range.0)?;
+        Ok(())
+    }
+
+    /// The k/k₁ of row i (log-spaced).
+    pub fn k_over_k1(&self, i: usize) -> f64 {
+        let (lo, hi) = self.k_over_k1_range;
+        if self.k_points == 1 {
+            return lo;
+        }
+        lo * (hi / lo).powf(i as f64 / (self.k_points - 1) as f64)
+    }
+
+    /// The ω/(β₁⁻)² of column j (linear).
+    pub fn omega_over_w1(&self, j: usize) -> f64 {
+        let (lo, hi) = self.omega_range;
+        if self.omega_points == 1 {
+            return lo;
+        }
+        lo + (hi - lo) * j as f64 / (self.omega_points - 1) as f64
+    }
+
+    /// The forced model at N modes, k/k₁ and ω/(β₁⁻)².
+    pub fn model(&self, modes: usize, k: f64, omega: f64) -> Result<Forced, ParameterError> {
+        let f = Forced {
+            modes,
+            k_over_k1: k,
+            zeta1: self.zeta1,
+            omega_over_w1: omega,
+            gap: self.gap,
+            printed_eq37_amplitude: false,
+        };
+        f.model()?;
+        Ok(f)
+    }
+}
+
+/// A stable periodic orbit of a cell.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Attractor {
+    /// m: forcing periods per orbit period (least).
+    pub period_m: u64,
+    /// n: entries into contact per orbit period.
+    pub impacts_n: usize,
+    /// The largest Floquet multiplier modulus (< 1).
+    pub spectral_radius: f64,
+    /// Reached by continuation from the previous cell of the row.
+    pub continued: bool,
+    /// The seeded starts that reached it (0 = rest).
+    pub starts: Vec<usize>,
+}
+
+impl Attractor {
+    /// Contacts per forcing period, n/m.
+    pub fn taps_per_period(&self) -> f64 {
+        self.impacts_n as f64 / self.period_m as f64
+    }
+}
+
+/// The convergence check of a cell: the orbit from rest with more modes.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Check {
+    /// Its (m, n), if start 0 reached a stable orbit.
+    pub from_rest: Option<(u64, usize)>,
+    /// Stable orbits (N modes) reached from `check_starts` further random starts that the
+    /// cell's search did not find.
+    pub missed: usize,
+}
+
+/// One (k, ω) cell.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Cell {
+    /// The distinct stable orbits found, continued ones first.
+    pub attractors: Vec<Attractor>,
+    /// Which of them start 0 (rest) reached.
+    pub from_rest: Option<usize>,
+    /// Starts that reached no stable orbit of period ≤ max_m.
+    pub unsettled_starts: usize,
+    /// The convergence check, on checked cells.
+    pub check: Option<Check>,
+}
+
+impl Cell {
+    /// The orbit reached from rest.
+    pub fn rest(&self) -> Option<&Attractor> {
+        self.from_rest.map(|i| &self.attractors[i])
+    }
+
+    /// Whether the check's orbit from rest is one of this cell's (m, n) labels (None
+    /// when the cell is not checked).
+    pub fn check_agrees(&self) -> Option<bool> {
+        let c = self.check.as_ref()?;
+        Some(match c.from_rest {
+            Some((m, n)) => self
+                .attractors
+                .iter()
+                .any(|a| a.period_m == m && a.impacts_n == n),
+            None => self.from_rest.is_none(),
+        })
+    }
+}
+
+/// One row: a k and its cells along ω.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Row {
+    /// The row's index.
+    pub index: usize,
+    /// k/k₁.
+    pub k_over_k1: f64,
+    /// Cells in increasing ω.
+    pub cells: Vec<Cell>,
+}
+
+/// The atlas.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct AtlasData {
+    /// The parameters.
+    pub params: AtlasParams,
+    /// ω/(β₁⁻)² of the columns.
+    pub omega_over_w1: Vec<f64>,
+    /// The rows, in increasing k.
+    pub rows: Vec<Row>,
+}
+
+/// Computes row i; `progress` is called once per finished cell.
+pub fn row(p: &AtlasParams, i: usize, progress: &(dyn Fn() + Sync)) -> Result<Row, Error> {
+    let k = p.k_over_k1(i);
+    let checked_row = i.is_multiple_of(p.check_stride);
+    let mut cells = Vec::with_capacity(p.omega_points);
+    let mut previous: Vec<Found> = Vec::new();
+    for j in 0..p.omega_points {
+        let w = p.omega_over_w1(j);
+        let sim = Simulator::new(p.model(p.modes, k, w)?.model()?)?;
+        let search = CellSearch {
+            sim: &sim,
+            starts: p.starts,
+            transient: p.transient,
+            max_period: p.max_period,
+            seed: (p.seed, i as u64, j as u64),
+        };
+        let (mut cell, found) = search.run(&previous)?;
+        if checked_row && j.is_multiple_of(p.check_stride) {
+            let sim = Simulator::new(p.model(p.check_modes, k, w)?.model()?)?;
+            let check = CellSearch {
+                sim: &sim,
+                ..search
+            };
+            let orbit = check.from_start(0)?;
+            let extra = p.starts..p.starts + p.check_starts;
+            cell.check = Some(Check {
+                from_rest: orbit.map(|o| (o.period_m, o.impacts_n)),
+                missed: search.missed(&found, extra)?,
+            });
+        }
+        cells.push(cell);
+        previous = found;
+        progress();
+    }
+    Ok(Row {
+        index: i,
+        k_over_k1: k,
+        cells,
+    })
+}
+
+/// A part of the rows: shard `index` of `count` takes rows i with i mod count = index
+/// (interleaved, so each shard gets a share of the costly stiff rows).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Shard {
+    /// I, from 0.
+    pub index: usize,
+    /// N.
+    pub count: usize,
+}
+
+impl Shard {
+    /// All rows.
+    pub const WHOLE: Shard = Shard { index: 0, count: 1 };
+
+    /// Parses "I/N" with 0 ≤ I < N.
+    pub fn parse(text: &str) -> Result<Self, ParameterError> {
+        let bad = || ParameterError::new("--shard", text, "I/N with integers 0 ≤ I < N, N ≥ 1");
+        let (i, n) = text.split_once('/').ok_or_else(bad)?;
+        let index: usize = i.trim().parse().map_err(|_| bad())?;
+        let count: usize = n.trim().parse().map_err(|_| bad())?;
+        if count == 0 || index >= count {
+            return Err(bad());
+        }
+        Ok(Self { index, count })
+    }
+
+    /// The rows of this shard among `rows`.
+    pub fn rows(self, rows: usize) -> impl Iterator<Item = usize> {
+        (self.index..rows).step_by(self.count)
+    }
+}
+
+/// A shard's result: the parameters, which shard, and its rows.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Partial {
+    /// The format's name, so that a wrong file is refused with a clear message.
+    pub format: String,
+    /// The parameters (every shard of one atlas has the same).
+    pub params: AtlasParams,
+    /// The build that computed it (version and commit): shards of different builds are
+    /// not merged.
+    pub build: String,
+    /// Which shard.
+    pub shard: Shard,
+    /// Its rows, in increasing index.
+    pub rows: Vec<Row>,
+}
+
+/// The `format` of a [`Partial`].
+pub const PARTIAL_FORMAT: &str = "impacting-cantilever atlas shard v1";
+
+/// Computes the rows of one shard in parallel (rayon); `progress` is called once per cell.
+pub fn compute_shard(
+    p: &AtlasParams,
+    shard: Shard,
+    progress: &(dyn Fn() + Sync),
+) -> Result<Partial, Error> {
+    p.validate()?;
+    let indices: Vec<usize> = shard.rows(p.k_points).collect();
+    let rows = indices
+        .par_iter()
+        .map(|&i| row(p, i, progress))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(Partial {
+        format: PARTIAL_FORMAT.to_string(),
+        params: p.clone(),
+        build: build(),
+        shard,
+        rows,
+    })
+}
+
+/// This build: version, commit, and whether the tree had uncommitted changes.
+pub fn build() -> String {
+    let p = crate::base::provenance::Provenance::now("");
+    let dirty = if p.dirty == Some(true) {
+        "+changes"
+    } else {
+        ""
+    };
+    format!("{} {}{dirty}", p.version, p.commit)
+}
+
+/// The whole atlas in one process.
+pub fn compute(p: &AtlasParams, progress: &(dyn Fn() + Sync)) -> Result<AtlasData, Error> {
+    merge(vec![compute_shard(p, Shard::WHOLE, progress)?])
+}
+
+/// Combines shards into the atlas. Refuses shards of different parameters, a row given
+/// twice, or a missing row, naming it.
+pub fn merge(parts: Vec<Partial>) -> Result<AtlasData, Error> {
+    let refuse = |what: String| {
+        Err(Error::Parameter(ParameterError::new(
+            "atlas shards",
+            what,
+            "the shards 0/N … (N−1)/N of one atlas (same parameters), each once",
+        )))
+    };
+    let Some(first) = parts.first() else {
+        return refuse("none".into());
+    };
+    let (params, first_build) = (first.params.clone(), first.build.clone());
+    let mut rows: Vec<Option<Row>> = vec![None; params.k_points];
+    for part in parts {
+        if part.format != PARTIAL_FORMAT {
+            return refuse(format!("a file of format {:?}", part.format));
+        }
+        if part.build != first_build {
+            return refuse(format!(
+                "shard {}/{} computed by another build ({} vs {first_build})",
+                part.shard.index, part.shard.count, part.build
+            ));
+        }
+        if part.params != params {
+            return refuse(format!(
+                "shard {}/{} computed with other parameters",
+                part.shard.index, part.shard.count
+            ));
+        }
+        for r in part.rows {
+            let i = r.index;
+            if i >= rows.len() || r.cells.len() != params.omega_points {
+                return refuse(format!("row {i} malformed"));
+            }
+            if rows[i].is_some() {
+                return refuse(format!("row {i} given twice"));
+            }
+            rows[i] = Some(r);
+        }
+    }
+    let mut complete = Vec::with_capacity(rows.len());
+    for (i, r) in rows.into_iter().enumerate() {
+        match r {
+            Some(r) => complete.push(r),
+            None => return refuse(format!("row {i} missing")),
+        }
+    }
+    Ok(AtlasData {
+        omega_over_w1: (0..params.omega_points)
+            .map(|j| params.omega_over_w1(j))
+            .collect(),
+        params,
+        rows: complete,
+    })
+}

@@ -1,0 +1,121 @@
+//! What continuation needs to know about one period of an orbit besides its state: the
+//! impact velocities, the largest tip displacement, and how close the orbit is to
+//! **grazing**, where its event signature (its number n of contacts per period) changes.
+//!
+//! n changes when an interior local extremum of the tip displacement d(t) crosses the stop
+//! d₀: a contact's deepest point rises to d₀ (the contact vanishes), a near miss in free
+//! flight reaches it (a contact appears), a dip inside a contact phase falls to d₀ (the
+//! contact splits in two), or the short free interval between two contacts closes (they
+//! merge). The **grazing distance** is therefore the smallest |d_ext − d₀| over the orbit's
+//! interior local extrema: it tends to 0 at every grazing, whichever kind.
+//!
+//! Extrema are found from sign changes of ḋ sampled at least eight times per period of the
+//! fastest mode (its frequency bounded by the largest row sum of the contact stiffness);
+//! per segment the one nearest the stop is refined by bisection on ḋ to round-off. The
+//! largest tip displacement is the certified maximum ([`crate::engine::sim::maximum`]).
+
+use crate::engine::sim::maximum::maximum;
+use crate::engine::sim::{EventView, Observer, SegmentView, Simulator, Stats};
+use crate::model::galerkin::Region;
+
+/// One period of an orbit, seen from the tip.
+#[derive(Debug, Clone, Default, serde::Serialize)]
+pub struct OrbitShape {
+    /// Tip velocity at each entry into contact, in time order.
+    pub impact_velocities: Vec<f64>,
+    /// The smallest |d_ext − d₀| over interior local extrema of d (None if d has none).
+    pub grazing_distance: Option<f64>,
+    /// The largest tip displacement.
+    pub max_tip: f64,
+}
+
+/// Collects an [`OrbitShape`] over a run.
+#[derive(Debug, Clone)]
+pub struct ShapeObserver {
+    shape: OrbitShape,
+    gap: f64,
+    /// Highest angular frequency in the model (sampling density of the extremum search).
+    fastest: f64,
+    /// The last sample of the previous segment (d, ḋ), to see an extremum that falls on a
+    /// segment boundary.
+    last: Option<(f64, f64)>,
+}
+
+impl ShapeObserver {
+    /// For a run of `sim`.
+    pub fn new(sim: &Simulator) -> Self {
+        let k = sim.model().stiffness(Region::Contact);
+        let row_sum = (0..k.nrows())
+            .map(|i| k.row(i).iter().map(|v| v.abs()).sum::<f64>())
+            .fold(0.0, f64::max);
+        Self {
+            shape: OrbitShape {
+                max_tip: f64::NEG_INFINITY,
+                ..Default::default()
+            },
+            gap: sim.model().params().gap,
+            fastest: row_sum.sqrt().max(sim.omega()),
+            last: None,
+        }
+    }
+
+    /// The shape seen.
+    pub fn finish(self) -> OrbitShape {
+        self.shape
+    }
+}
+
+impl Observer for ShapeObserver {
+    fn segment(&mut self, seg: &SegmentView) {
+        let sig = seg.signal();
+        let mut stats = Stats::default();
+        let (best, _) = maximum(sig, seg.end, None, seg.simulator().h_min(), &mut stats);
+        let top = best.map_or(sig.tip(0.0).0, |(_, d)| d);
+        self.shape.max_tip = self.shape.max_tip.max(top);
+        let samples = ((seg.end * self.fastest / std::f64::consts::FRAC_PI_4).ceil() as usize)
+            .clamp(16, 1 << 16);
+        let h = seg.end / samples as f64;
+        let mut prev = match self.last {
+            Some((d, v)) => (-h, d, v),
+            None => {
+                let (d, v) = sig.tip(0.0);
+                (0.0, d, v)
+            }
+        };
+        // the extremum bracket nearest the stop: (start, ḋ > 0 at start, distance)
+        let mut candidate: Option<(f64, bool, f64)> = None;
+        for j in 1..=samples {
+            let s = j as f64 * h;
+            let (d, v) = sig.tip(s);
+            if (prev.2 > 0.0) != (v > 0.0) {
+                let dist = (d - self.gap).abs().min((prev.1 - self.gap).abs());
+                if candidate.is_none_or(|c| dist < c.2) {
+                    candidate = Some((prev.0.max(0.0), prev.2 > 0.0, dist));
+                }
+            }
+            prev = (s, d, v);
+        }
+        self.last = Some((prev.1, prev.2));
+        if let Some((a, rising, _)) = candidate {
+            // bisection on ḋ over [a, a + h]: ḋ keeps the sign `rising` at lo
+            let (mut lo, mut hi) = (a, (a + h).min(seg.end));
+            for _ in 0..60 {
+                let mid = 0.5 * (lo + hi);
+                if (sig.tip(mid).1 > 0.0) == rising {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            let dist = (sig.tip(0.5 * (lo + hi)).0 - self.gap).abs();
+            let g = &mut self.shape.grazing_distance;
+            *g = Some(g.map_or(dist, |x: f64| x.min(dist)));
+        }
+    }
+
+    fn event(&mut self, e: &EventView) {
+        if e.entering && !e.grazing {
+            self.shape.impact_velocities.push(e.tip_velocity);
+        }
+    }
+}

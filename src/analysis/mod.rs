@@ -1,0 +1,10 @@
+//! What is computed from runs: periodic orbits, stability, branches, maps, spectra and refinement studies.
+
+pub mod atlas;
+pub mod continuation;
+pub mod convergence;
+pub mod energetic;
+pub mod harmonics;
+pub mod impact_section;
+pub mod orbit;
+pub mod shooting;

@@ -1,0 +1,401 @@
+//! Exact solution of the Galerkin model inside one region: §5.1, eqs (35)–(36).
+//!
+//! In each region the state x = [η; η̇] obeys the linear, time-invariant
+//! ẋ = A x + b̂ cos ωt + ĉ (b̂ = [0; f], ĉ = [0; (k d₀/4)φ(1)] in contact, 0 in free flight).
+//! Its solution is written as
+//!
+//! ```text
+//! x(t₀ + s) = x_p(t₀ + s) + V e^{Λs} w,     x_p(t) = Re(X e^{iωt}) + x_s,
+//! (iωI − A) X = b̂,   x_s = [K⁻¹(k d₀/4)φ(1); 0],   w = V⁻¹(x(t₀) − x_p(t₀)),
+//! ```
+//!
+//! with A = VΛV⁻¹ from an eigendecomposition (faer) of the *balanced* matrix
+//! D⁻¹AD (Parlett–Reinsch, radix 2): the contact matrix couples over-damped high modes
+//! with a stiff rank-one stop, and without balancing the eigenvectors lose about five
+//! digits at N = 20, k = 10⁷. The paper evaluates the convolution of eq (36) "by parts";
+//! the complex solve for X is the same thing in closed form.
+//!
+//! The coefficients w are carried as 2N real *modal coordinates* (real and imaginary parts
+//! of w_k for each conjugate pair, w_k for each real eigenvalue), so projecting a state onto
+//! the eigenbasis and back are real 2N×2N matrix–vector products.
+//!
+//! **Critical damping.** Where a pair of eigenvalues nearly coincides on the real axis and
+//! its eigenvectors become nearly parallel (a mode at or near critical damping, in either
+//! region), the pair is replaced by a 2 × 2 real block on its invariant plane
+//! ([`block`]), whose exponential is exact through the coalescence. The eigenvector
+//! condition then stays moderate at every damping.
+//!
+//! Only the forcing *phase* enters x_p, so callers pass the phase ωt mod 2π, kept exactly
+//! by counting whole periods (see [`crate::engine::sim::clock`]).
+
+use crate::base::numerics::polar;
+use crate::model::galerkin::{GalerkinModel, Region};
+use nalgebra::{DMatrix, DVector};
+use num_complex::Complex64;
+
+/// Largest acceptable eigenvector condition estimate ‖V‖‖V⁻¹‖ (1-norms): beyond it the
+/// modal solution would lose more than ~6 digits and we refuse rather than mislead.
+pub const MAX_EIGENVECTOR_CONDITION: f64 = 1e10;
+
+pub use crate::error::FlowError;
+
+pub mod basis;
+pub mod block;
+
+pub use basis::{balance, eigen_balanced};
+use basis::{conjugate_halves, invert, norm1, solve, ModalBasis};
+
+pub use block::Block2;
+
+/// What kind of real term of the homogeneous solution.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum TermKind {
+    /// A complex-conjugate pair of eigenvalues: two real modal coordinates, the real and
+    /// imaginary part of w_k.
+    Pair,
+    /// A real eigenvalue: one coordinate.
+    Real,
+    /// A nearly defective pair (critical damping) as a 2 × 2 real block on its invariant
+    /// plane W: two coordinates, evolved by e^{Bs}.
+    Block {
+        /// B.
+        block: Block2,
+        /// φ(1)ᵀW_η: the tip displacement per unit of each coordinate.
+        tip: [f64; 2],
+        /// The two columns of [`RegionFlow::eigenvectors`] that hold W.
+        columns: [usize; 2],
+    },
+}
+
+/// One real term of the homogeneous solution.
+#[derive(Debug, Clone, Copy)]
+pub struct ModalTerm {
+    /// λ_k (the member of a pair with Im λ_k > 0); μ for a block.
+    pub lambda: Complex64,
+    /// Pair, real eigenvalue or block.
+    pub kind: TermKind,
+    /// Index of its first real modal coordinate.
+    pub slot: usize,
+    /// Index k of λ_k in [`RegionFlow::eigenvalues`] and of its column in
+    /// [`RegionFlow::eigenvectors`] (for a block, the first of its two columns).
+    pub index: usize,
+    /// Its tip signal per unit w_k: φ(1)ᵀv_k, doubled for a pair (whose real contribution
+    /// is Re(2 φ(1)ᵀv_k w_k e^{λ_k s})); zero for a block (see [`TermKind::Block`]).
+    pub tip: Complex64,
+}
+
+impl ModalTerm {
+    /// A complex-conjugate pair.
+    pub fn is_pair(&self) -> bool {
+        self.kind == TermKind::Pair
+    }
+}
+
+/// Two eigenvalues count as one nearly defective pair when their eigenvectors are nearly
+/// parallel and the eigenvalues are within this relative distance (a loose bound that only
+/// keeps the inverse iteration for the pair's plane from being pulled elsewhere).
+const NEAR_DEFECTIVE_SEPARATION: f64 = 0.5;
+/// … with |cos| of the angle between their (balanced) eigenvectors above this: an
+/// eigendecomposition of a pair at a smaller angle θ is conditioned like 1/θ ≳ 30.
+const NEAR_DEFECTIVE_COSINE: f64 = 0.9995;
+
+/// The exact flow of one region.
+#[derive(Debug, Clone)]
+pub struct RegionFlow {
+    /// Which region.
+    region: Region,
+    /// N.
+    modes: usize,
+    /// Eigenvalues λ_k of A^± (2N, conjugate pairs adjacent or real).
+    lambda: Vec<Complex64>,
+    /// The modal basis of the unbalanced A: right eigenvectors (columns), with each
+    /// nearly defective pair's two columns replaced by its invariant plane W.
+    v: DMatrix<Complex64>,
+    /// The homogeneous solution's real terms, one per conjugate pair or real eigenvalue.
+    terms: Vec<ModalTerm>,
+    /// Real 2N×2N map from x − x_p to the real modal coordinates y (the rows of V⁻¹ of
+    /// the terms; real and imaginary parts for a pair): one real matrix-vector product.
+    to_modal: DMatrix<f64>,
+    /// Real 2N×2N map from the evolved coordinates ỹ(s) back to the state: the columns of
+    /// V (2 Re v_k and −2 Im v_k for a pair, v_k for a real eigenvalue).
+    from_modal: DMatrix<f64>,
+    /// X with (iωI − A)X = b̂: the complex amplitude of the forced response.
+    forced: DVector<Complex64>,
+    /// x_s: the static response to the stop preload.
+    static_state: DVector<f64>,
+    /// ω.
+    omega: f64,
+    /// φ(1)ᵀ X_η.
+    tip_forced: Complex64,
+    /// φ(1)ᵀ η_s.
+    tip_static: f64,
+    /// ‖V‖₁‖V⁻¹‖₁ of the modal basis.
+    condition: f64,
+    /// The largest relative residual ‖AW − WB‖/‖A‖ of a block's invariant plane (0 without).
+    plane_residual: f64,
+}
+
+impl RegionFlow {
+    /// Builds the flow of `region` for `model`.
+    pub fn new(model: &GalerkinModel, region: Region) -> Result<Self, FlowError> {
+        let n = model.modes();
+        let a = model.state_matrix(region);
+        let ModalBasis {
+            lambda,
+            v,
+            blocks,
+            plane_residual,
+        } = match region {
+            Region::Free => basis::free(model),
+            Region::Contact => basis::general(&a)?,
+        };
+        let scale = lambda.iter().map(|l| l.norm()).fold(0.0, f64::max);
+        if let Some(l) = lambda.iter().find(|l| l.re > 1e-12 * scale) {
+            return Err(FlowError::Unstable(l.re));
+        }
+        let v_inv = invert(&v)?;
+        let condition = norm1(&v) * norm1(&v_inv);
+        if !condition.is_finite() || condition > MAX_EIGENVECTOR_CONDITION {
+            return Err(FlowError::IllConditioned(condition));
+        }
+        let omega = model.params().forcing.as_ref().map_or(0.0, |f| f.omega);
+        // (iωI − A) X = [0; f], solved directly (not through V, so it does not inherit
+        // the eigenvectors' conditioning).
+        let mut m = a.map(|x| Complex64::new(-x, 0.0));
+        for i in 0..2 * n {
+            m[(i, i)] += Complex64::new(0.0, omega);
+        }
+        let mut rhs = DVector::zeros(2 * n);
+        for j in 0..n {
+            rhs[n + j] = Complex64::new(model.forcing_amplitude()[j], 0.0);
+        }
+        let forced = solve(&m, &rhs)?;
+        let preload = model.stop_preload(region);
+        let mut static_state = DVector::zeros(2 * n);
+        if region == Region::Contact && preload.iter().any(|p| *p != 0.0) {
+            let k = model.stiffness(region);
+            let eta = k
+                .cholesky()
+                .map(|c| c.solve(&preload))
+                .ok_or(FlowError::Eigen)?;
+            static_state.rows_mut(0, n).copy_from(&eta);
+        }
+        let tip_of_mode =
+            |k: usize| -> Complex64 { (0..n).map(|i| v[(i, k)] * model.tip()[i]).sum() };
+        let tip_forced = (0..n).map(|i| forced[i] * model.tip()[i]).sum();
+        let tip_static = (0..n).map(|i| static_state[i] * model.tip()[i]).sum();
+        let mut terms = Vec::new();
+        let mut to_modal = DMatrix::zeros(2 * n, 2 * n);
+        let mut from_modal = DMatrix::zeros(2 * n, 2 * n);
+        let mut slot = 0;
+        for (k, pair) in conjugate_halves(&lambda)? {
+            if let Some(&(i, j, block)) = blocks.iter().find(|b| b.0 == k || b.1 == k) {
+                // a block covers both members of its pair: emitted once
+                if terms.iter().any(|t: &ModalTerm| t.index == i) {
+                    continue;
+                }
+                let tip = [0, 1].map(|c| {
+                    let col = if c == 0 { i } else { j };
+                    (0..n).map(|r| v[(r, col)].re * model.tip()[r]).sum::<f64>()
+                });
+                for (c, col) in [i, j].into_iter().enumerate() {
+                    to_modal
+                        .row_mut(slot + c)
+                        .copy_from(&v_inv.row(col).map(|z| z.re));
+                    from_modal
+                        .column_mut(slot + c)
+                        .copy_from(&v.column(col).map(|z| z.re));
+                }
+                terms.push(ModalTerm {
+                    lambda: Complex64::new(block.mu, 0.0),
+                    kind: TermKind::Block {
+                        block,
+                        tip,
+                        columns: [i, j],
+                    },
+                    slot,
+                    index: i,
+                    tip: Complex64::new(0.0, 0.0),
+                });
+                slot += 2;
+                continue;
+            }
+            let (row, col) = (v_inv.row(k), v.column(k));
+            to_modal.row_mut(slot).copy_from(&row.map(|z| z.re));
+            if pair {
+                to_modal.row_mut(slot + 1).copy_from(&row.map(|z| z.im));
+                // x_h = Re(2 v_k w_k e^{λs}) = 2 Re v_k · Re c − 2 Im v_k · Im c
+                from_modal
+                    .column_mut(slot)
+                    .copy_from(&col.map(|z| 2.0 * z.re));
+                from_modal
+                    .column_mut(slot + 1)
+                    .copy_from(&col.map(|z| -2.0 * z.im));
+            } else {
+                from_modal.column_mut(slot).copy_from(&col.map(|z| z.re));
+            }
+            terms.push(ModalTerm {
+                lambda: if pair {
+                    lambda[k]
+                } else {
+                    Complex64::new(lambda[k].re, 0.0)
+                },
+                kind: if pair { TermKind::Pair } else { TermKind::Real },
+                slot,
+                index: k,
+                tip: tip_of_mode(k) * if pair { 2.0 } else { 1.0 },
+            });
+            slot += if pair { 2 } else { 1 };
+        }
+        Ok(Self {
+            terms,
+            to_modal,
+            from_modal,
+            region,
+            modes: n,
+            lambda,
+            v,
+            forced,
+            static_state,
+            omega,
+            tip_forced,
+            tip_static,
+            condition,
+            plane_residual,
+        })
+    }
+
+    /// Which region.
+    pub fn region(&self) -> Region {
+        self.region
+    }
+
+    /// N.
+    pub fn modes(&self) -> usize {
+        self.modes
+    }
+
+    /// Eigenvalues λ_k of A^± (2N, conjugate pairs adjacent or real).
+    pub fn eigenvalues(&self) -> &[Complex64] {
+        &self.lambda
+    }
+
+    /// Right eigenvectors V (columns) of A^±.
+    pub fn eigenvectors(&self) -> &DMatrix<Complex64> {
+        &self.v
+    }
+
+    /// The homogeneous solution's real terms, one per conjugate pair or real eigenvalue.
+    pub fn terms(&self) -> &[ModalTerm] {
+        &self.terms
+    }
+
+    /// X with (iωI − A)X = b̂: the complex amplitude of the forced response.
+    pub fn forced(&self) -> &DVector<Complex64> {
+        &self.forced
+    }
+
+    /// x_s: the static response to the stop preload.
+    pub fn static_state(&self) -> &DVector<f64> {
+        &self.static_state
+    }
+
+    /// ω (0 without forcing).
+    pub fn omega(&self) -> f64 {
+        self.omega
+    }
+
+    /// φ(1)ᵀX_η: the complex amplitude of the forced tip response.
+    pub fn tip_forced(&self) -> Complex64 {
+        self.tip_forced
+    }
+
+    /// φ(1)ᵀη_s: the static tip displacement under the stop preload.
+    pub fn tip_static(&self) -> f64 {
+        self.tip_static
+    }
+
+    /// ‖V‖₁‖V⁻¹‖₁ of the modal basis: the modal solution is accurate to about this
+    /// times ε.
+    pub fn condition(&self) -> f64 {
+        self.condition
+    }
+
+    /// The number of nearly defective pairs treated as 2 × 2 blocks.
+    pub fn blocks(&self) -> usize {
+        self.terms
+            .iter()
+            .filter(|t| matches!(t.kind, TermKind::Block { .. }))
+            .count()
+    }
+
+    /// The largest relative residual of a block's invariant plane (0 without blocks).
+    pub fn plane_residual(&self) -> f64 {
+        self.plane_residual
+    }
+
+    /// x_p at forcing phase θ = ωt: Re(X e^{iθ}) + x_s.
+    pub fn particular(&self, phase: f64) -> DVector<f64> {
+        let e = polar(1.0, phase);
+        DVector::from_iterator(
+            2 * self.modes,
+            self.forced
+                .iter()
+                .zip(self.static_state.iter())
+                .map(|(x, s)| (x * e).re + s),
+        )
+    }
+
+    /// The real modal coordinates y of state `x` at forcing phase θ: the real and
+    /// imaginary parts of w = V⁻¹(x − x_p(θ)) over the terms.
+    pub fn modal(&self, x: &DVector<f64>, phase: f64) -> DVector<f64> {
+        &self.to_modal * (x - self.particular(phase))
+    }
+
+    /// The complex coefficient w_k of a pair or real term (for a block, its first
+    /// coordinate).
+    pub fn coefficient(&self, y: &DVector<f64>, term: &ModalTerm) -> Complex64 {
+        if term.is_pair() {
+            Complex64::new(y[term.slot], y[term.slot + 1])
+        } else {
+            Complex64::new(y[term.slot], 0.0)
+        }
+    }
+
+    /// The state s after a point with modal coordinates `y` and forcing phase θ.
+    pub fn state(&self, y: &DVector<f64>, phase: f64, s: f64) -> DVector<f64> {
+        let mut evolved = DVector::zeros(y.len());
+        for t in &self.terms {
+            if let TermKind::Block { block, .. } = t.kind {
+                let z = block.apply(s, [y[t.slot], y[t.slot + 1]]);
+                evolved[t.slot] = z[0];
+                evolved[t.slot + 1] = z[1];
+                continue;
+            }
+            let e = decay(t.lambda.re * s);
+            if e == 0.0 {
+                continue;
+            }
+            if t.is_pair() {
+                let c = self.coefficient(y, t) * polar(e, t.lambda.im * s);
+                evolved[t.slot] = c.re;
+                evolved[t.slot + 1] = c.im;
+            } else {
+                evolved[t.slot] = y[t.slot] * e;
+            }
+        }
+        let mut x = self.particular(phase + self.omega * s);
+        x.gemv(1.0, &self.from_modal, &evolved, 1.0);
+        x
+    }
+}
+
+/// e^x for x ≤ 0, flushed to zero below the double range (libm's underflow path is slow,
+/// and fast over-damped modes reach x ≪ −745 within one segment).
+pub fn decay(x: f64) -> f64 {
+    if x < -700.0 {
+        0.0
+    } else {
+        x.exp()
+    }
+}

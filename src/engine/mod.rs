@@ -1,0 +1,7 @@
+//! Time integration of the models: exact flows, certified switching and impacts.
+
+pub mod dopri5;
+pub mod flow;
+pub mod rigid;
+pub mod sim;
+pub mod two_basis;

@@ -1,0 +1,354 @@
+//! The rigid-impact N-mode model (§3, eqs 10–11): exact free flight between impacts
+//! ([`crate::engine::sim::Simulator::free_flight`], certified contact detection), and at
+//! φ(1)ᵀη = d₀ with approaching tip velocity the modal law η̇⁺ = −\[R\]η̇⁻ of any of the three
+//! restitution laws ([`crate::model::restitution`]).
+//!
+//! **Chattering policy** (impacts accumulating in finite time; never an endless loop):
+//! - an impact whose incoming tip velocity is below `v_stick` (relative to the velocity
+//!   scale of the run), or a run of three impacts whose intervals shrink geometrically
+//!   (ratio ρ < 1, consistent within 10%) with the last interval below 1e-6 T, is a chatter;
+//! - its accumulation time is extrapolated geometrically, t_∞ = t_n + Δ_n ρ/(1 − ρ);
+//! - the model moves to t_∞, puts the tip on the stop with zero tip velocity, and
+//!   **sticks** there while the contact force pushes (the exact constrained flow of the
+//!   other N − 1 directions, [`sticking`]); it is released at the certified time the force
+//!   would turn to pulling, and flies on;
+//! - that limit of infinitely many impacts exists only for a law that leaves the velocity
+//!   orthogonal to φ(1) unchanged (Newton's law at the tip, \[R\]_IR; any law for N = 1).
+//!   Under another law (\[R\]_N, \[R\]_C with N > 1) the run **stops** at t_∞ with
+//!   [`Outcome::Chatter`];
+//! - a hard cap of `max_impacts` impacts per run ends it with [`Outcome::ImpactLimit`].
+
+pub mod sticking;
+
+use crate::engine::sim::{Clock, Simulator, Stats};
+use crate::error::ParameterError;
+use crate::model::galerkin::Region;
+use nalgebra::{DMatrix, DVector};
+use serde::Serialize;
+use std::sync::OnceLock;
+pub use sticking::Sticking;
+
+/// One rigid-impact event.
+#[derive(Debug, Clone, Serialize)]
+pub enum RigidEvent {
+    /// An impact: time, incoming and outgoing tip velocity φ(1)ᵀη̇, and the modal
+    /// velocities η̇⁻ and η̇⁺ = −\[R\]η̇⁻.
+    Impact {
+        /// t.
+        time: f64,
+        /// Tip velocity before (> 0, approaching).
+        incoming: f64,
+        /// Tip velocity after.
+        outgoing: f64,
+        /// Modal velocities before.
+        before: Vec<f64>,
+        /// Modal velocities after.
+        after: Vec<f64>,
+    },
+    /// Chattering detected: impacts accumulate at `accumulation`.
+    Chatter {
+        /// t of the last resolved impact.
+        time: f64,
+        /// The extrapolated accumulation time.
+        accumulation: f64,
+    },
+    /// The tip is held at the stop from `time` (after a chatter).
+    StickStart {
+        /// t.
+        time: f64,
+    },
+    /// The contact force reaches zero at `time` and the tip flies off.
+    StickEnd {
+        /// t.
+        time: f64,
+    },
+}
+
+/// How a run ended.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub enum Outcome {
+    /// Reached the requested end.
+    Completed,
+    /// Chattering under a law whose limit does not leave the tangential velocity alone
+    /// (N > 1 with \[R\]_N or \[R\]_C): stopped at the accumulation time.
+    Chatter(f64),
+    /// More than `max_impacts` impacts.
+    ImpactLimit,
+}
+
+/// Settings of the chattering policy.
+#[derive(Debug, Clone, Copy)]
+pub struct RigidSettings {
+    /// Incoming tip velocity below which an impact counts as chatter, relative to the
+    /// largest tip velocity seen in the run.
+    pub v_stick: f64,
+    /// Hard cap on impacts per run.
+    pub max_impacts: usize,
+}
+
+impl Default for RigidSettings {
+    fn default() -> Self {
+        Self {
+            v_stick: 1e-9,
+            max_impacts: 1_000_000,
+        }
+    }
+}
+
+/// A rigid-impact run.
+#[derive(Debug, Clone)]
+pub struct RigidRun {
+    /// Events in order.
+    pub events: Vec<RigidEvent>,
+    /// The state at the end.
+    pub state: DVector<f64>,
+    /// The time at the end.
+    pub time: f64,
+    /// The clock at the end (for chaining runs).
+    pub clock: Clock,
+    /// How it ended.
+    pub outcome: Outcome,
+    /// Work counters of the free flights.
+    pub stats: Stats,
+}
+
+impl RigidRun {
+    /// The impacts in order, as (t, incoming tip velocity, outgoing tip velocity).
+    pub fn impacts(&self) -> Vec<(f64, f64, f64)> {
+        self.events
+            .iter()
+            .filter_map(|e| match e {
+                RigidEvent::Impact {
+                    time,
+                    incoming,
+                    outgoing,
+                    ..
+                } => Some((*time, *incoming, *outgoing)),
+                _ => None,
+            })
+            .collect()
+    }
+}
+
+/// The rigid-impact model: the free flow of `sim` and the modal law `law` (\[R\]).
+pub struct RigidImpact {
+    /// The simulator whose free flow is used (its contact flow is not).
+    pub sim: Simulator,
+    /// \[R\].
+    pub law: DMatrix<f64>,
+    /// The chattering policy.
+    pub settings: RigidSettings,
+    /// The constrained flow of a sticking phase, built on first use.
+    sticking: OnceLock<Sticking>,
+}
+
+impl RigidImpact {
+    /// Builds the model; `law` must be N × N with finite entries.
+    pub fn new(sim: Simulator, law: DMatrix<f64>) -> Result<Self, ParameterError> {
+        let n = sim.model().modes();
+        if law.nrows() != n || law.ncols() != n {
+            return Err(ParameterError::new(
+                "restitution law [R]",
+                format!("{} × {}", law.nrows(), law.ncols()),
+                &format!("an N × N matrix, N = {n}"),
+            ));
+        }
+        if law.iter().any(|r| !r.is_finite()) {
+            return Err(ParameterError::new(
+                "restitution law [R]",
+                "a non-finite entry",
+                "finite entries",
+            ));
+        }
+        Ok(Self {
+            sim,
+            law,
+            settings: RigidSettings::default(),
+            sticking: OnceLock::new(),
+        })
+    }
+
+    /// The generic impact oscillator ẍ + cẋ + kx = F cos ωt, stop at gx = d₀, with
+    /// Newton's law of restitution r ([`crate::model::galerkin::GalerkinModel::oscillator`]).
+    pub fn oscillator(
+        o: &crate::model::galerkin::Oscillator,
+        r: f64,
+    ) -> Result<Self, crate::error::Error> {
+        let sim = Simulator::new(crate::model::galerkin::GalerkinModel::oscillator(o)?)?;
+        Ok(Self::new(
+            sim,
+            crate::model::restitution::impulse_response(1, r)?,
+        )?)
+    }
+
+    /// The sticking phase's constrained flow.
+    pub fn sticking(&self) -> &Sticking {
+        self.sticking
+            .get_or_init(|| Sticking::new(self.sim.model()))
+    }
+
+    /// Whether the law leaves every velocity orthogonal to φ(1) unchanged (−\[R\]v = v for
+    /// φ(1)ᵀv = 0, to round-off): then a chatter's limit is the constrained state, and the
+    /// model can stick.
+    pub fn can_stick(&self) -> bool {
+        let n = self.sim.model().modes();
+        let phi = self.sim.model().tip();
+        let projector = DMatrix::identity(n, n) - phi * phi.transpose() / phi.norm_squared();
+        let defect = (-&self.law - DMatrix::identity(n, n)) * projector;
+        defect.amax() <= 1e-12 * (1.0 + self.law.amax())
+    }
+
+    /// The free-flight state s after x at `clock`, ignoring the stop.
+    fn coast(&self, x: &DVector<f64>, clock: &Clock, s: f64) -> DVector<f64> {
+        let flow = self.sim.flow(Region::Free);
+        let phase = self.sim.omega() * clock.offset;
+        flow.state(&flow.modal(x, phase), phase, s)
+    }
+
+    fn tip_velocity(&self, x: &DVector<f64>) -> f64 {
+        let n = self.sim.model().modes();
+        self.sim.model().tip().dot(&x.rows(n, n))
+    }
+
+    /// Runs from x0 at t = 0 until t_end.
+    pub fn run(&self, x0: &DVector<f64>, t_end: f64) -> RigidRun {
+        let period = self.sim.period();
+        self.run_until(
+            x0,
+            Clock::at_cycle(period, 0),
+            Clock::at_time(period, t_end),
+        )
+    }
+
+    /// Runs from x0 at `start` (any time and forcing phase) until the clock reads `end`.
+    pub fn run_until(&self, x0: &DVector<f64>, start: Clock, end: Clock) -> RigidRun {
+        let n = self.sim.model().modes();
+        let period = self.sim.period();
+        let mut clock = start;
+        let mut x = x0.clone();
+        let mut stats = Stats::default();
+        let mut events = Vec::new();
+        let mut impacts: Vec<(f64, f64)> = Vec::new();
+        let mut v_scale = self.tip_velocity(&x).abs();
+        let mut outcome = Outcome::Completed;
+        while clock.before(&end) {
+            // to the end of this period, or to `end` within it
+            let (horizon, last) = if clock.cycles < end.cycles {
+                (period - clock.offset, false)
+            } else {
+                (end.offset - clock.offset, true)
+            };
+            let (crossing, state) = self.sim.free_flight(&x, &clock, horizon, &mut stats);
+            x = state;
+            let Some(s) = crossing else {
+                if last {
+                    clock = end;
+                } else {
+                    clock = Clock::at_cycle(period, clock.cycles + 1);
+                }
+                continue;
+            };
+            clock.advance(s);
+            let t = clock.time();
+            let incoming = self.tip_velocity(&x);
+            v_scale = v_scale.max(incoming.abs());
+            // the law acts on the modal velocities; the displacement is continuous
+            let before: Vec<f64> = x.rows(n, n).iter().cloned().collect();
+            let post = -(&self.law * x.rows(n, n));
+            x.rows_mut(n, n).copy_from(&post);
+            let outgoing = self.tip_velocity(&x);
+            events.push(RigidEvent::Impact {
+                time: t,
+                incoming,
+                outgoing,
+                before,
+                after: post.iter().cloned().collect(),
+            });
+            impacts.push((t, incoming));
+            if impacts.len() > self.settings.max_impacts {
+                outcome = Outcome::ImpactLimit;
+                break;
+            }
+            if let Some(t_inf) = self.chatter(&impacts, incoming, v_scale, period) {
+                events.push(RigidEvent::Chatter {
+                    time: t,
+                    accumulation: t_inf,
+                });
+                if !self.can_stick() {
+                    outcome = Outcome::Chatter(t_inf);
+                    clock.advance((t_inf - t).max(0.0));
+                    break;
+                }
+                // to the accumulation point (the remaining impacts only remove the tip
+                // velocity), onto the stop, and held while the stop has to push
+                let dt = (t_inf - t).max(0.0).min(end.time() - t);
+                x = self.sticking().project(&self.coast(&x, &clock, dt));
+                clock.advance(dt);
+                if !clock.before(&end) {
+                    break;
+                }
+                let phase = self.sim.omega() * clock.offset;
+                if self.sticking().push(&x, phase) <= 0.0 {
+                    // the free motion already pulls away: it flies off at once
+                    impacts.clear();
+                    continue;
+                }
+                events.push(RigidEvent::StickStart { time: clock.time() });
+                let (release, state) = self.sticking().hold(
+                    &x,
+                    &clock,
+                    end.time() - clock.time(),
+                    self.sim.h_min(),
+                    self.sim.settings().root_tolerance,
+                    &mut stats,
+                );
+                x = state;
+                match release {
+                    Some(s) => {
+                        clock.advance(s);
+                        events.push(RigidEvent::StickEnd { time: clock.time() });
+                        impacts.clear();
+                        // the next flight's speeds are measured afresh
+                        v_scale = 0.0;
+                    }
+                    None => {
+                        clock = end;
+                        break;
+                    }
+                }
+            }
+        }
+        RigidRun {
+            events,
+            time: clock.time(),
+            clock,
+            state: x,
+            outcome,
+            stats,
+        }
+    }
+
+    /// The accumulation time if the recent impacts chatter.
+    fn chatter(
+        &self,
+        impacts: &[(f64, f64)],
+        incoming: f64,
+        v_scale: f64,
+        period: f64,
+    ) -> Option<f64> {
+        let (t_n, _) = *impacts.last()?;
+        if incoming <= self.settings.v_stick * v_scale {
+            return Some(t_n);
+        }
+        if impacts.len() < 4 {
+            return None;
+        }
+        let k = impacts.len();
+        let d: Vec<f64> = (k - 3..k)
+            .map(|i| impacts[i].0 - impacts[i - 1].0)
+            .collect();
+        let (r1, r2) = (d[1] / d[0], d[2] / d[1]);
+        let geometric = r1 > 0.0 && r2 > 0.0 && r2 < 1.0 && ((r2 - r1) / r2).abs() < 0.1;
+        (geometric && d[2] < 1e-6 * period).then(|| t_n + d[2] * r2 / (1.0 - r2))
+    }
+}

@@ -1,0 +1,524 @@
+//! Exact piecewise-linear simulation of the N-mode bilinear model (§5.1–5.2, eqs 34–36)
+//! with certified switching times.
+//!
+//! Within a region the solution is exact ([`crate::engine::flow`]); the tip gap of each segment is
+//! an exponential sum with derivative bounds ([`signal`]), so the first switch is found by
+//! a certified search ([`crossing`]) and polished to round-off. What a run records is up
+//! to its [`Observer`]s ([`observe`]): events, stroboscopic samples, dense output, the exact
+//! energy budget ([`energy`]), the certified maximum of the tip ([`maximum`]).
+//!
+//! The modules, one concept each:
+//! - [`clock`]: t = cycles·T + offset, so the forcing phase stays exact over long runs;
+//! - [`signal`]: the segment's tip signal and its derivative bounds;
+//! - [`crossing`]: the certified crossing search;
+//! - [`maximum`]: the certified maximum;
+//! - [`energy`]: the exact energy integrals;
+//! - [`observe`]: the observer trait and the standard observers;
+//! - this module: the driver.
+//!
+//! A touch with zero normal velocity is recorded as a grazing event and does not switch
+//! the region.
+
+pub mod clock;
+pub mod crossing;
+pub mod energy;
+pub mod maximum;
+pub mod observe;
+pub mod signal;
+
+pub use clock::Clock;
+pub use energy::EnergyBudget;
+pub use observe::{
+    Dense, Energy, Event, EventView, Events, Observer, Sample, SegmentView, Strobe, TipMax,
+    TipMaximum,
+};
+
+use crate::engine::flow::{FlowError, RegionFlow, TermKind};
+use crate::error::Error;
+use crate::model::galerkin::{GalerkinModel, Region};
+use energy::EnergyTables;
+use nalgebra::DVector;
+use signal::{Signal, Target, Term, TipSignal};
+use std::sync::OnceLock;
+
+/// Shortest certified step, as a fraction of the forcing period.
+const H_MIN_FRACTION: f64 = 1e-13;
+
+/// Longest segment without a restart, in forcing periods.
+const MAX_SEGMENT_PERIODS: i64 = 16;
+
+/// Work counters.
+#[derive(Debug, Clone, Copy, Default, serde::Serialize)]
+pub struct Stats {
+    /// Region segments propagated.
+    pub segments: u64,
+    /// Evaluations of the switching function.
+    pub evaluations: u64,
+    /// Certified advancement steps.
+    pub steps: u64,
+    /// Of those, steps taken in contact.
+    pub contact_steps: u64,
+    /// Evaluations spent polishing switching times.
+    pub polish_evaluations: u64,
+}
+
+/// Simulation settings.
+#[derive(Debug, Clone, Copy)]
+pub struct Settings {
+    /// Relative tolerance of the (Halley) polish of a switching time (default 1e-15).
+    pub root_tolerance: f64,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Self {
+            root_tolerance: 1e-15,
+        }
+    }
+}
+
+/// Where a run ended.
+#[derive(Debug, Clone)]
+pub struct RunEnd {
+    /// The state [η; η̇].
+    pub state: DVector<f64>,
+    /// The time.
+    pub clock: Clock,
+    /// Work counters.
+    pub stats: Stats,
+}
+
+/// The end of one region's flight ([`Simulator::flight`]).
+#[derive(Debug, Clone)]
+pub struct Flight {
+    /// The time after the start at which the state left the region, if within the horizon.
+    pub exit: Option<f64>,
+    /// The state then (or at the horizon).
+    pub state: DVector<f64>,
+    /// The tip velocity then.
+    pub tip_velocity: f64,
+}
+
+/// The simulator: the model and its two exact region flows.
+#[derive(Debug, Clone)]
+pub struct Simulator {
+    model: GalerkinModel,
+    free: RegionFlow,
+    contact: RegionFlow,
+    settings: Settings,
+    /// Tables for the exact energy integrals of the − and + regions, built on first use.
+    energy_tables: OnceLock<[EnergyTables; 2]>,
+}
+
+/// One segment: a region's flow from modal coordinates y at forcing phase θ₀.
+struct Segment<'a> {
+    flow: &'a RegionFlow,
+    y: DVector<f64>,
+    phase0: f64,
+    signal: TipSignal,
+    /// 2|ḋ_modal(0) − ḋ_state|: the representation error of the tip velocity.
+    velocity_floor: f64,
+    /// +1 in free flight (g = d − d₀), −1 in contact (g = d₀ − d).
+    sign: f64,
+    gap: f64,
+}
+
+impl<'a> Segment<'a> {
+    fn new(
+        flow: &'a RegionFlow,
+        x: &DVector<f64>,
+        phase0: f64,
+        gap: f64,
+        tip: &DVector<f64>,
+    ) -> Self {
+        let y = flow.modal(x, phase0);
+        let terms = flow.terms().iter().map(|t| {
+            let a = t.tip * flow.coefficient(&y, t);
+            match t.kind {
+                TermKind::Pair => Term::Pair {
+                    a,
+                    lambda: t.lambda,
+                },
+                TermKind::Real => Term::Real {
+                    a: a.re,
+                    lambda: t.lambda.re,
+                },
+                TermKind::Block { block, tip, .. } => Term::Block {
+                    block,
+                    tip,
+                    y: [y[t.slot], y[t.slot + 1]],
+                },
+            }
+        });
+        let signal = TipSignal::new(
+            flow.omega(),
+            phase0,
+            flow.tip_forced(),
+            flow.tip_static(),
+            gap.abs(),
+            terms,
+        );
+        // the modal representation's error at s = 0, against the state itself
+        let n = flow.modes();
+        let (d_state, v_state) = (tip.dot(&x.rows(0, n)), tip.dot(&x.rows(n, n)));
+        let (d_modal, v_modal) = signal.tip(0.0);
+        let signal = signal.with_floor(2.0 * (d_modal - d_state).abs());
+        Self {
+            flow,
+            phase0,
+            signal,
+            velocity_floor: 2.0 * (v_modal - v_state).abs(),
+            y,
+            sign: if flow.region() == Region::Free {
+                1.0
+            } else {
+                -1.0
+            },
+            gap,
+        }
+    }
+
+    /// The first switch into the other region, or touch of the surface, in (0, s_max],
+    /// certified.
+    fn next_switch(
+        &self,
+        s_max: f64,
+        h_min: f64,
+        rel_tol: f64,
+        stats: &mut Stats,
+    ) -> Option<crossing::Found> {
+        let surface = Target {
+            sign: self.sign,
+            level: self.gap,
+        };
+        crossing::first_event(&self.signal, surface, 0.0, s_max, h_min, rel_tol, stats)
+    }
+
+    fn state(&self, s: f64) -> DVector<f64> {
+        self.flow.state(&self.y, self.phase0, s)
+    }
+}
+
+impl Simulator {
+    /// Builds both region flows.
+    pub fn new(model: GalerkinModel) -> Result<Self, FlowError> {
+        let free = RegionFlow::new(&model, Region::Free)?;
+        let contact = RegionFlow::new(&model, Region::Contact)?;
+        Ok(Self {
+            free,
+            contact,
+            model,
+            settings: Settings::default(),
+            energy_tables: OnceLock::new(),
+        })
+    }
+
+    /// The same simulator with other settings.
+    pub fn with_settings(mut self, settings: Settings) -> Self {
+        self.settings = settings;
+        self
+    }
+
+    /// The model.
+    pub fn model(&self) -> &GalerkinModel {
+        &self.model
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> Settings {
+        self.settings
+    }
+
+    /// The exact flow of a region.
+    pub fn flow(&self, region: Region) -> &RegionFlow {
+        match region {
+            Region::Free => &self.free,
+            Region::Contact => &self.contact,
+        }
+    }
+
+    /// The larger eigenvector condition ‖V‖₁‖V⁻¹‖₁ of the two region flows: the flow is
+    /// accurate to about this times ε.
+    pub fn condition(&self) -> f64 {
+        self.free.condition().max(self.contact.condition())
+    }
+
+    /// The forcing frequency ω (0 without forcing).
+    pub fn omega(&self) -> f64 {
+        self.free.omega()
+    }
+
+    /// The forcing period T (1 without forcing).
+    pub fn period(&self) -> f64 {
+        let omega = self.omega();
+        if omega > 0.0 {
+            2.0 * std::f64::consts::PI / omega
+        } else {
+            1.0
+        }
+    }
+
+    /// The shortest certified step (1e-13 T): the search's resolution.
+    pub fn h_min(&self) -> f64 {
+        H_MIN_FRACTION * self.period()
+    }
+
+    /// The start of cycle `cycles` of this simulator's forcing.
+    pub fn clock_at_cycle(&self, cycles: i64) -> Clock {
+        Clock::at_cycle(self.period(), cycles)
+    }
+
+    pub(crate) fn energy_tables(&self, region: Region) -> &EnergyTables {
+        let tables = self.energy_tables.get_or_init(|| {
+            [
+                EnergyTables::new(&self.free, &self.model),
+                EnergyTables::new(&self.contact, &self.model),
+            ]
+        });
+        &tables[usize::from(region == Region::Contact)]
+    }
+
+    /// Stored energy: ½|η̇|² + ½ηᵀK⁻η + (k/8)(φ(1)ᵀη − d₀)₊².
+    pub fn stored_energy(&self, x: &DVector<f64>) -> f64 {
+        energy::stored_energy(&self.model, x)
+    }
+
+    /// Free flight (the − region's exact flow) from `x` at `clock` for at most `horizon`:
+    /// the certified first time the tip reaches d₀, if any, and the state then (or at the
+    /// horizon). The rigid-impact model ([`crate::engine::rigid`]) is built on it.
+    pub fn free_flight(
+        &self,
+        x: &DVector<f64>,
+        clock: &Clock,
+        horizon: f64,
+        stats: &mut Stats,
+    ) -> (Option<f64>, DVector<f64>) {
+        let f = self.flight(Region::Free, x, clock, horizon, stats);
+        (f.exit, f.state)
+    }
+
+    /// One region's exact flow from `x` at `clock` for at most `horizon`, to the first
+    /// certified crossing *out of* `region` (touches are passed through), whatever side of
+    /// the surface `x` starts on. This is the building block of drivers whose state changes
+    /// at a switch (the two-basis truncation, [`crate::engine::two_basis`]): there a state projected
+    /// into a new basis may lie just beyond the surface. If it does and moves back into
+    /// `region`, the flight goes on from where it re-enters; if it moves on out (or rests),
+    /// the flight ends at once (s = 0).
+    pub fn flight(
+        &self,
+        region: Region,
+        x: &DVector<f64>,
+        clock: &Clock,
+        horizon: f64,
+        stats: &mut Stats,
+    ) -> Flight {
+        let gap = self.model.params().gap;
+        let seg = Segment::new(
+            self.flow(region),
+            x,
+            self.omega() * clock.offset,
+            gap,
+            self.model.tip(),
+        );
+        stats.segments += 1;
+        let out = Target {
+            sign: seg.sign,
+            level: gap,
+        };
+        let p = seg.signal.local(0.0, out);
+        let mut from = 0.0;
+        if p.g > p.noise() {
+            // beyond the surface: wait for the re-entry, or leave at once
+            let back = Target {
+                sign: -seg.sign,
+                level: gap,
+            };
+            let entry = (p.gd < 0.0)
+                .then(|| {
+                    crossing::first_crossing(
+                        &seg.signal,
+                        back,
+                        0.0,
+                        horizon,
+                        self.h_min(),
+                        self.settings.root_tolerance,
+                        stats,
+                    )
+                })
+                .flatten();
+            match entry {
+                Some(s) => from = s,
+                None if p.gd < 0.0 => {
+                    // still beyond the surface at the horizon
+                    return Flight {
+                        exit: None,
+                        state: seg.state(horizon),
+                        tip_velocity: seg.signal.tip(horizon).1,
+                    };
+                }
+                None => {
+                    return Flight {
+                        exit: Some(0.0),
+                        state: x.clone(),
+                        tip_velocity: seg.signal.tip(0.0).1,
+                    }
+                }
+            }
+        }
+        let exit = loop {
+            let found = crossing::first_event(
+                &seg.signal,
+                out,
+                from,
+                horizon,
+                self.h_min(),
+                self.settings.root_tolerance,
+                stats,
+            );
+            match found {
+                Some(crossing::Found::Touch(s)) if s > from => from = s,
+                Some(crossing::Found::Crossing(s)) => break Some(s),
+                _ => break None,
+            }
+        };
+        let s = exit.unwrap_or(horizon);
+        Flight {
+            exit,
+            state: seg.state(s),
+            tip_velocity: seg.signal.tip(s).1,
+        }
+    }
+
+    /// Runs `periods` forcing periods from state x at the start of cycle 0 (t = 0).
+    pub fn run(
+        &self,
+        x0: &DVector<f64>,
+        periods: u64,
+        observer: &mut dyn Observer,
+    ) -> Result<RunEnd, Error> {
+        self.run_from(x0, self.clock_at_cycle(0), periods, observer)
+    }
+
+    /// Runs from `start` until `periods` whole periods later (ending at a period boundary).
+    pub fn run_from(
+        &self,
+        x0: &DVector<f64>,
+        start: Clock,
+        periods: u64,
+        observer: &mut dyn Observer,
+    ) -> Result<RunEnd, Error> {
+        let end = Clock::at_cycle(start.period, start.cycles.saturating_add_unsigned(periods));
+        self.run_until(x0, start, end, observer)
+    }
+
+    /// Runs from `start` until the clock reads `end` (any time, not only a period
+    /// boundary); nothing happens if `end` is not after `start`.
+    ///
+    /// Invariant, checked at every switch: an entry into contact moves into the stop
+    /// (ḋ ≥ 0) and an exit away from it (ḋ ≤ 0), beyond the grazing band. A run that breaks
+    /// it stops with [`Error::Invariant`] rather than return a wrong trajectory.
+    pub fn run_until(
+        &self,
+        x0: &DVector<f64>,
+        start: Clock,
+        end: Clock,
+        observer: &mut dyn Observer,
+    ) -> Result<RunEnd, Error> {
+        let period = self.period();
+        let omega = self.omega();
+        let gap = self.model.params().gap;
+        let h_min = self.h_min();
+        let boundaries = observer.needs_period_boundaries();
+        let mut stats = Stats::default();
+        let mut clock = start;
+        let mut x = x0.clone();
+        let mut region = self.initial_region(&x, &clock);
+        observer.begin(self, &clock, &x);
+        while clock.before(&end) {
+            let flow = self.flow(region);
+            let seg = Segment::new(flow, &x, omega * clock.offset, gap, self.model.tip());
+            stats.segments += 1;
+            // Segments end at a period boundary when samples are taken there, and after at
+            // most MAX_SEGMENT_PERIODS periods otherwise, so the forcing phase argument
+            // ω·(offset + s) stays below 2π·16 and keeps ~14 digits over any run length.
+            let remaining = end.cycles - clock.cycles;
+            let (horizon, to_boundary) = if remaining == 0 {
+                (end.offset - clock.offset, false)
+            } else {
+                let ahead = if boundaries {
+                    1
+                } else {
+                    remaining.min(MAX_SEGMENT_PERIODS)
+                };
+                (ahead as f64 * period - clock.offset, true)
+            };
+            let found = seg.next_switch(horizon, h_min, self.settings.root_tolerance, &mut stats);
+            let (crossing, touch) = match found {
+                Some(crossing::Found::Crossing(s)) => (Some(s), false),
+                Some(crossing::Found::Touch(s)) => (Some(s), true),
+                None => (None, false),
+            };
+            let s_end = crossing.unwrap_or(horizon);
+            observer.segment(&SegmentView {
+                sim: self,
+                flow,
+                y: &seg.y,
+                phase0: seg.phase0,
+                signal: &seg.signal,
+                start: clock,
+                end: s_end,
+                region,
+            });
+            x = seg.state(s_end);
+            match crossing {
+                Some(s) => {
+                    clock.advance(s);
+                    let (_, v) = seg.signal.tip(s);
+                    // A touch whose normal velocity vanishes to round-off (relative to the
+                    // tip velocity scale, plus the representation's error) does not enter
+                    // the other region.
+                    let vscale = 1e-13 * seg.signal.velocity_bound(s) + seg.velocity_floor;
+                    let grazing = touch || v.abs() <= vscale;
+                    let entering = region == Region::Free;
+                    if !grazing && (entering != (v > 0.0)) {
+                        return Err(Error::Invariant(format!(
+                            "at t = {:.17e} the tip {} contact with velocity {v:e}",
+                            clock.time(),
+                            if entering { "entered" } else { "left" }
+                        )));
+                    }
+                    observer.event(&EventView {
+                        clock,
+                        entering: region == Region::Free,
+                        grazing,
+                        tip_velocity: v,
+                        state: &x,
+                    });
+                    if !grazing {
+                        region = match region {
+                            Region::Free => Region::Contact,
+                            Region::Contact => Region::Free,
+                        };
+                    }
+                }
+                None if to_boundary => {
+                    clock.cycles += ((clock.offset + s_end) / period).round() as i64;
+                    clock.offset = 0.0;
+                    observer.period_boundary(&clock, &x);
+                }
+                None => clock = end,
+            }
+        }
+        observer.end(self, &clock, &x, &stats);
+        Ok(RunEnd {
+            state: x,
+            clock,
+            stats,
+        })
+    }
+
+    /// The region a state starts in ([`GalerkinModel::starting_region`]).
+    pub fn initial_region(&self, x: &DVector<f64>, clock: &Clock) -> Region {
+        self.model.starting_region(x, clock.offset)
+    }
+}

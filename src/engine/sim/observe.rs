@@ -1,0 +1,362 @@
+//! Observers: what a run records. The driver ([`super::Simulator`]) hands every observer
+//! each exact segment before the state moves on, each switching event, and each period
+//! boundary; an observer keeps what it needs. A scene adds an observable by writing an
+//! observer, not by editing the driver. Nothing is computed that no observer asks for.
+//!
+//! Several observers run together as a tuple: `sim.run(&x0, 100, &mut (&mut events, &mut
+//! energy))`; `&mut ()` observes nothing.
+
+use super::clock::Clock;
+use super::energy::{segment_energy, stored_energy, EnergyBudget};
+use super::maximum::maximum;
+use super::signal::TipSignal;
+use super::{Simulator, Stats};
+use crate::engine::flow::RegionFlow;
+use crate::model::galerkin::Region;
+use nalgebra::DVector;
+
+/// One exact segment of the run: the flow of `region` from `start` for a duration `end`.
+pub struct SegmentView<'a> {
+    pub(super) sim: &'a Simulator,
+    pub(super) flow: &'a RegionFlow,
+    pub(super) y: &'a DVector<f64>,
+    pub(super) phase0: f64,
+    pub(super) signal: &'a TipSignal,
+    /// When the segment starts.
+    pub start: Clock,
+    /// Its duration S: it covers [start, start + S].
+    pub end: f64,
+    /// The region it lies in.
+    pub region: Region,
+}
+
+impl SegmentView<'_> {
+    /// Tip displacement and velocity at s ∈ [0, S] (exact).
+    pub fn tip(&self, s: f64) -> (f64, f64) {
+        self.signal.tip(s)
+    }
+
+    /// The state [η; η̇] at s ∈ [0, S] (exact).
+    pub fn state(&self, s: f64) -> DVector<f64> {
+        self.flow.state(self.y, self.phase0, s)
+    }
+
+    /// The tip signal with its derivative bounds (for certified searches).
+    pub fn signal(&self) -> &TipSignal {
+        self.signal
+    }
+
+    /// The region's exact flow.
+    pub fn flow(&self) -> &RegionFlow {
+        self.flow
+    }
+
+    /// The segment's real modal coordinates y ([`RegionFlow::modal`]) at its start.
+    pub fn modal_coordinates(&self) -> &DVector<f64> {
+        self.y
+    }
+
+    /// The forcing phase ω·offset at its start.
+    pub fn phase(&self) -> f64 {
+        self.phase0
+    }
+
+    /// The simulator running it.
+    pub fn simulator(&self) -> &Simulator {
+        self.sim
+    }
+}
+
+/// A switching event as the driver sees it.
+pub struct EventView<'a> {
+    /// When.
+    pub clock: Clock,
+    /// Entering contact (`true`) or leaving it.
+    pub entering: bool,
+    /// A grazing touch (zero normal velocity): recorded, no switch.
+    pub grazing: bool,
+    /// Tip velocity φ(1)ᵀη̇ at the event.
+    pub tip_velocity: f64,
+    /// The state [η; η̇] at the event.
+    pub state: &'a DVector<f64>,
+}
+
+/// What a run reports to. Every method has an empty default.
+pub trait Observer {
+    /// Whether segments must end at every period boundary (for samples taken on the
+    /// stroboscopic map or on a grid per period). Otherwise they may span up to 16 periods.
+    fn needs_period_boundaries(&self) -> bool {
+        false
+    }
+    /// The run starts from state x at `clock`.
+    fn begin(&mut self, _sim: &Simulator, _clock: &Clock, _x: &DVector<f64>) {}
+    /// An exact segment, before the state advances past it.
+    fn segment(&mut self, _segment: &SegmentView) {}
+    /// A switching event (after the segment that ends at it).
+    fn event(&mut self, _event: &EventView) {}
+    /// A period boundary reached at `clock` in state x (only where segments end there).
+    fn period_boundary(&mut self, _clock: &Clock, _x: &DVector<f64>) {}
+    /// The run ends in state x at `clock`, with its work counters.
+    fn end(&mut self, _sim: &Simulator, _clock: &Clock, _x: &DVector<f64>, _stats: &Stats) {}
+}
+
+impl Observer for () {}
+
+impl<O: Observer + ?Sized> Observer for &mut O {
+    fn needs_period_boundaries(&self) -> bool {
+        (**self).needs_period_boundaries()
+    }
+    fn begin(&mut self, sim: &Simulator, clock: &Clock, x: &DVector<f64>) {
+        (**self).begin(sim, clock, x)
+    }
+    fn segment(&mut self, segment: &SegmentView) {
+        (**self).segment(segment)
+    }
+    fn event(&mut self, event: &EventView) {
+        (**self).event(event)
+    }
+    fn period_boundary(&mut self, clock: &Clock, x: &DVector<f64>) {
+        (**self).period_boundary(clock, x)
+    }
+    fn end(&mut self, sim: &Simulator, clock: &Clock, x: &DVector<f64>, stats: &Stats) {
+        (**self).end(sim, clock, x, stats)
+    }
+}
+
+macro_rules! tuple_observer {
+    ($($name:ident),+) => {
+        impl<$($name: Observer),+> Observer for ($($name,)+) {
+            fn needs_period_boundaries(&self) -> bool {
+                #[allow(non_snake_case)]
+                let ($($name,)+) = self;
+                false $(|| $name.needs_period_boundaries())+
+            }
+            fn begin(&mut self, sim: &Simulator, clock: &Clock, x: &DVector<f64>) {
+                #[allow(non_snake_case)]
+                let ($($name,)+) = self;
+                $($name.begin(sim, clock, x);)+
+            }
+            fn segment(&mut self, segment: &SegmentView) {
+                #[allow(non_snake_case)]
+                let ($($name,)+) = self;
+                $($name.segment(segment);)+
+            }
+            fn event(&mut self, event: &EventView) {
+                #[allow(non_snake_case)]
+                let ($($name,)+) = self;
+                $($name.event(event);)+
+            }
+            fn period_boundary(&mut self, clock: &Clock, x: &DVector<f64>) {
+                #[allow(non_snake_case)]
+                let ($($name,)+) = self;
+                $($name.period_boundary(clock, x);)+
+            }
+            fn end(&mut self, sim: &Simulator, clock: &Clock, x: &DVector<f64>, stats: &Stats) {
+                #[allow(non_snake_case)]
+                let ($($name,)+) = self;
+                $($name.end(sim, clock, x, stats);)+
+            }
+        }
+    };
+}
+tuple_observer!(A);
+tuple_observer!(A, B);
+tuple_observer!(A, B, C);
+tuple_observer!(A, B, C, D);
+tuple_observer!(A, B, C, D, E);
+
+/// A recorded switching event.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct Event {
+    /// When.
+    pub clock: Clock,
+    /// t.
+    pub time: f64,
+    /// Entering contact (`true`) or leaving it.
+    pub entering: bool,
+    /// A grazing touch (zero normal velocity): recorded, no switch.
+    pub grazing: bool,
+    /// Tip velocity φ(1)ᵀη̇ at the event.
+    pub tip_velocity: f64,
+    /// The state [η; η̇], if asked for.
+    pub state: Option<Vec<f64>>,
+}
+
+/// Records switching events (with the full state at each if `with_states`).
+#[derive(Debug, Clone, Default)]
+pub struct Events {
+    /// Also keep the state [η; η̇] at each event.
+    pub with_states: bool,
+    /// The events, in order.
+    pub events: Vec<Event>,
+}
+
+impl Events {
+    /// Events with their states.
+    pub fn with_states() -> Self {
+        Self {
+            with_states: true,
+            events: Vec::new(),
+        }
+    }
+}
+
+impl Observer for Events {
+    fn event(&mut self, e: &EventView) {
+        self.events.push(Event {
+            clock: e.clock,
+            time: e.clock.time(),
+            entering: e.entering,
+            grazing: e.grazing,
+            tip_velocity: e.tip_velocity,
+            state: self.with_states.then(|| e.state.as_slice().to_vec()),
+        });
+    }
+}
+
+/// The state at the start and at every period boundary (ωt = 0 mod 2π): the
+/// stroboscopic Poincaré map of §5.2.
+#[derive(Debug, Clone, Default)]
+pub struct Strobe {
+    /// (cycle, state) pairs.
+    pub samples: Vec<(i64, DVector<f64>)>,
+}
+
+impl Strobe {
+    /// The states alone.
+    pub fn states(&self) -> Vec<DVector<f64>> {
+        self.samples.iter().map(|(_, x)| x.clone()).collect()
+    }
+}
+
+impl Observer for Strobe {
+    fn needs_period_boundaries(&self) -> bool {
+        true
+    }
+    fn begin(&mut self, _: &Simulator, clock: &Clock, x: &DVector<f64>) {
+        self.samples.push((clock.cycles, x.clone()));
+    }
+    fn period_boundary(&mut self, clock: &Clock, x: &DVector<f64>) {
+        self.samples.push((clock.cycles, x.clone()));
+    }
+}
+
+/// One dense sample: (t, tip displacement, tip velocity, in contact).
+pub type Sample = (f64, f64, f64, bool);
+
+/// Samples of the tip on the grid t = cycles·T + j·T/`per_period`.
+#[derive(Debug, Clone, Default)]
+pub struct Dense {
+    /// Samples per forcing period.
+    pub per_period: usize,
+    /// The samples, in order.
+    pub samples: Vec<Sample>,
+}
+
+impl Dense {
+    /// `per_period` samples per period.
+    pub fn new(per_period: usize) -> Self {
+        Self {
+            per_period,
+            samples: Vec::new(),
+        }
+    }
+}
+
+impl Observer for Dense {
+    fn needs_period_boundaries(&self) -> bool {
+        self.per_period > 0
+    }
+    fn segment(&mut self, seg: &SegmentView) {
+        if self.per_period == 0 {
+            return;
+        }
+        let dt = seg.start.period / self.per_period as f64;
+        // samples on the global grid t = j·dt that fall in [offset, offset + S)
+        let mut j = (seg.start.offset / dt).ceil() as i64;
+        // j < per_period: the grid point j = per_period is the next cycle's j = 0 (its
+        // rounded j·dt may fall a hair before T)
+        while j < self.per_period as i64 {
+            let s = j as f64 * dt - seg.start.offset;
+            if s >= seg.end {
+                break;
+            }
+            let (d, v) = seg.tip(s);
+            self.samples
+                .push((seg.start.time() + s, d, v, seg.region == Region::Contact));
+            j += 1;
+        }
+    }
+}
+
+/// The energy budget of the run, with every segment's work and dissipation in closed form.
+#[derive(Debug, Clone, Default)]
+pub struct Energy {
+    /// The budget (complete after the run).
+    pub budget: EnergyBudget,
+}
+
+impl Observer for Energy {
+    fn begin(&mut self, sim: &Simulator, _: &Clock, x: &DVector<f64>) {
+        self.budget.initial = stored_energy(sim.model(), x);
+    }
+    fn segment(&mut self, seg: &SegmentView) {
+        let tables = seg.sim.energy_tables(seg.region);
+        let (w, d) = segment_energy(seg.flow, seg.y, seg.phase0, tables, seg.end);
+        self.budget.work += w;
+        self.budget.dissipated += d;
+    }
+    fn end(&mut self, sim: &Simulator, _: &Clock, x: &DVector<f64>, _: &Stats) {
+        self.budget.last = stored_energy(sim.model(), x);
+    }
+}
+
+/// The largest tip displacement d = φ(1)ᵀη of a run, found by certified level crossings
+/// ([`super::maximum`]): no value of d on the run exceeds `value` by more than `tolerance`,
+/// down to the search's resolution (a peak narrower than the shortest step, 1e-13 T,
+/// rising less than ≈ M·h_min²/2 above that level could pass unseen).
+#[derive(Debug, Clone, Copy, serde::Serialize)]
+pub struct TipMaximum {
+    /// Where it is attained.
+    pub clock: Clock,
+    /// t.
+    pub time: f64,
+    /// max d.
+    pub value: f64,
+    /// The certificate's slack: 64ε times the tip signal's magnitude scale.
+    pub tolerance: f64,
+}
+
+/// Observes the certified maximum of the tip displacement.
+#[derive(Debug, Clone, Default)]
+pub struct TipMax {
+    /// The maximum so far (none before the first segment).
+    pub maximum: Option<TipMaximum>,
+    /// Switching-function evaluations spent on it.
+    pub evaluations: u64,
+}
+
+impl Observer for TipMax {
+    fn segment(&mut self, seg: &SegmentView) {
+        let mut work = Stats::default();
+        let floor = self.maximum.map(|m| m.value);
+        let (best, tolerance) = maximum(seg.signal, seg.end, floor, seg.sim.h_min(), &mut work);
+        self.evaluations += work.evaluations;
+        // the certificate's slack is the largest over all segments
+        let tolerance = self
+            .maximum
+            .map_or(tolerance, |m| m.tolerance.max(tolerance));
+        if let Some((s, value)) = best {
+            let mut at = seg.start;
+            at.advance(s);
+            self.maximum = Some(TipMaximum {
+                clock: at,
+                time: at.time(),
+                value,
+                tolerance,
+            });
+        } else if let Some(m) = self.maximum.as_mut() {
+            m.tolerance = tolerance;
+        }
+    }
+}

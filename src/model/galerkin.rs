@@ -1,0 +1,590 @@
+//! The N-mode Galerkin compliant (bilinear) model: §2.2 eqs (5)–(9) and §5.1 eqs (31)–(35).
+//!
+//! The beam deflection is expanded in the free cantilever modes, w = Σ φ_i(s) η_i(t), with
+//! ∫φ_iφ_j = δ_ij and φ_i(1) = 2 ([`crate::model::continuum::free_mode`]). Then
+//!
+//! ```text
+//! η̈ + \[C\] η̇ + \[K^±\] η = F^±(t),                                   (34)
+//! K⁻ = diag(k_j),  K⁺ = K⁻ + (k/4) φ(1)φ(1)ᵀ = K⁻ + k·11ᵀ,           (9)
+//! C = diag(2α + γ k_j),                                            (34)
+//! F⁺ = F⁻ + (k d₀/4) φ(1),   F⁻_j(t) = ∫ φ_j f(s) ds · cos ωt,      (8)–(9)
+//! ```
+//!
+//! with k_j = (β_j^-)⁴, switching surface φ(1)ᵀη = d₀, and state-space form (35),
+//! x = [η; η̇], A^± = [[0, I], [−K^±, −C]].
+//!
+//! Deviations from the printed paper (each in the book's errata):
+//! - Damping ratio: C₁₁ = γk₁ = 2ζ₁(β₁⁻)², so γ = 2ζ₁/(β₁⁻)² (the Fig 9 caption's reading;
+//!   §5.2 prints ζ₁ = γ(β₁⁻)⁻²/2).
+//! - Forcing amplitude, eq (37): the printed k₁ψ₁(s)/(2ζ₁ψ₁(1)) gives an unconstrained tip
+//!   amplitude 1/(4ζ₁²), not the unit amplitude the text asks for.
+//!   [`SpatialProfile::UnitTipAtResonance`] is the profile a·φ₁(s) with a = C₁₁(β₁⁻)²/2,
+//!   which gives exactly 1 (a = ζ₁k₁ for α = 0); [`SpatialProfile::PaperEq37AsPrinted`]
+//!   keeps the printed amplitude for comparison.
+
+use crate::base::numerics::{brent, Quadrature};
+use crate::error::{self, ParameterError};
+use crate::model::continuum;
+use nalgebra::{DMatrix, DVector};
+use std::fmt;
+use std::sync::Arc;
+
+/// Largest number of modes N accepted.
+pub const MAX_MODES: usize = 400;
+
+/// Which side of the switching surface φ(1)ᵀη = d₀ the beam is on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
+pub enum Region {
+    /// The − region, φ(1)ᵀη < d₀: free flight.
+    Free,
+    /// The + region, φ(1)ᵀη ≥ d₀: in contact with the stop.
+    Contact,
+}
+
+/// The spatial profile f(s) of harmonic forcing f(s) cos ωt.
+#[derive(Clone)]
+pub enum SpatialProfile {
+    /// eq (37) with the amplitude the text intends: f(s) = a φ₁(s), a = C₁₁(β₁⁻)²/2, so
+    /// that the unconstrained tip amplitude is 1 at ω = (β₁⁻)².
+    UnitTipAtResonance,
+    /// eq (37) as printed: f(s) = k₁ψ₁(s)/(2ζ₁ψ₁(1)) = k₁φ₁(s)/(4ζ₁), with ζ₁ = C₁₁/(2(β₁⁻)²).
+    PaperEq37AsPrinted,
+    /// Modal amplitudes f_j given directly (missing entries are zero).
+    Modal(Vec<f64>),
+    /// Any profile f(s) on [0, 1], projected onto φ_j by quadrature.
+    Function(Arc<dyn Fn(f64) -> f64 + Send + Sync>),
+}
+
+impl fmt::Debug for SpatialProfile {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::UnitTipAtResonance => write!(f, "UnitTipAtResonance"),
+            Self::PaperEq37AsPrinted => write!(f, "PaperEq37AsPrinted"),
+            Self::Modal(v) => write!(f, "Modal({v:?})"),
+            Self::Function(_) => write!(f, "Function(..)"),
+        }
+    }
+}
+
+/// Harmonic forcing f(s) cos ωt.
+#[derive(Debug, Clone)]
+pub struct Forcing {
+    /// ω, the forcing frequency.
+    pub omega: f64,
+    /// f(s).
+    pub profile: SpatialProfile,
+}
+
+impl Forcing {
+    /// Forcing f(s) cos ωt with a profile f of your choosing (projected onto the modes by
+    /// quadrature).
+    pub fn from_fn(omega: f64, profile: impl Fn(f64) -> f64 + Send + Sync + 'static) -> Self {
+        Self {
+            omega,
+            profile: SpatialProfile::Function(Arc::new(profile)),
+        }
+    }
+
+    /// The paper's forcing, eq (37), with the corrected amplitude, at frequency ω.
+    pub fn paper(omega: f64) -> Self {
+        Self {
+            omega,
+            profile: SpatialProfile::UnitTipAtResonance,
+        }
+    }
+}
+
+/// A generic impact oscillator ẍ + cẋ + kx = F cos ωt, stop at gx = d₀
+/// ([`GalerkinModel::oscillator`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Oscillator {
+    /// k.
+    pub stiffness: f64,
+    /// c.
+    pub damping: f64,
+    /// F.
+    pub forcing: f64,
+    /// ω.
+    pub omega: f64,
+    /// g: the tip displacement per unit x.
+    pub tip_gain: f64,
+    /// d₀.
+    pub gap: f64,
+    /// The stop stiffness k_s of the compliant contact (0 for the rigid model alone).
+    pub stop_stiffness: f64,
+}
+
+/// The free modes of a discretised beam, mass-normalised ([`GalerkinModel::from_modes`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FreeModes {
+    /// k_j, the modal stiffnesses (squared free frequencies).
+    pub stiffness: Vec<f64>,
+    /// t_j, each mode's tip displacement.
+    pub tip: Vec<f64>,
+    /// c_j, the modal damping.
+    pub damping: Vec<f64>,
+    /// f_j, the modal forcing amplitudes.
+    pub forcing: Vec<f64>,
+}
+
+/// Parameters of the Galerkin model, validated by [`GalerkinModel::new`].
+#[derive(Debug, Clone)]
+pub struct GalerkinParams {
+    /// N, the number of free cantilever modes.
+    pub modes: usize,
+    /// k, the stop stiffness (the stop itself has stiffness k/4, eq 1).
+    pub stop_stiffness: f64,
+    /// d₀, the gap between the tip at rest and the stop.
+    pub gap: f64,
+    /// α: mass-proportional viscous damping, entering as 2α (eq 1).
+    pub viscous_damping: f64,
+    /// γ: stiffness-proportional material damping (eq 31).
+    pub material_damping: f64,
+    /// The harmonic forcing; `None` for free vibration.
+    pub forcing: Option<Forcing>,
+}
+
+impl GalerkinParams {
+    /// N modes, stop stiffness k; no gap, damping or forcing.
+    pub fn new(modes: usize, stop_stiffness: f64) -> Self {
+        Self {
+            modes,
+            stop_stiffness,
+            gap: 0.0,
+            viscous_damping: 0.0,
+            material_damping: 0.0,
+            forcing: None,
+        }
+    }
+
+    /// Sets the gap d₀.
+    pub fn with_gap(mut self, gap: f64) -> Self {
+        self.gap = gap;
+        self
+    }
+
+    /// Sets the viscous damping α.
+    pub fn with_viscous_damping(mut self, alpha: f64) -> Self {
+        self.viscous_damping = alpha;
+        self
+    }
+
+    /// Sets the material damping from ζ₁, the first mode's damping ratio:
+    /// γ = 2ζ₁/(β₁⁻)² (so that C₁₁ = γk₁ = 2ζ₁(β₁⁻)²). A bad ζ₁ surfaces as a bad γ.
+    pub fn with_zeta1(mut self, zeta1: f64) -> Self {
+        self.material_damping = material_damping_from_zeta1(zeta1);
+        self
+    }
+
+    /// Sets the forcing.
+    pub fn with_forcing(mut self, forcing: Forcing) -> Self {
+        self.forcing = Some(forcing);
+        self
+    }
+}
+
+/// γ = 2ζ₁/(β₁⁻)²: the material damping that gives mode 1 the damping ratio ζ₁.
+pub fn material_damping_from_zeta1(zeta1: f64) -> f64 {
+    2.0 * zeta1 / first_frequency()
+}
+
+/// (β₁⁻)², the first free frequency; the time and frequency unit of the CLI.
+pub fn first_frequency() -> f64 {
+    continuum::free_root(1).expect("mode 1 exists").powi(2)
+}
+
+/// k₁ = (β₁⁻)⁴, the first modal stiffness; the unit of stop stiffness in the CLI.
+pub fn first_modal_stiffness() -> f64 {
+    first_frequency().powi(2)
+}
+
+/// The assembled N-mode model.
+#[derive(Debug, Clone)]
+pub struct GalerkinModel {
+    params: GalerkinParams,
+    beta: Vec<f64>,
+    modal_stiffness: DVector<f64>,
+    tip: DVector<f64>,
+    damping: DVector<f64>,
+    forcing_amplitude: DVector<f64>,
+}
+
+impl GalerkinModel {
+    /// Validates the parameters and assembles the model.
+    pub fn new(params: GalerkinParams) -> Result<Self, ParameterError> {
+        let n = error::count_in_range("modes N", params.modes, MAX_MODES)?;
+        error::finite_non_negative("stop stiffness k", params.stop_stiffness)?;
+        error::finite("gap d₀", params.gap)?;
+        error::finite_non_negative("viscous damping α", params.viscous_damping)?;
+        error::finite_non_negative("material damping γ", params.material_damping)?;
+        let beta = continuum::roots(n, 0.0)?;
+        let modal_stiffness = DVector::from_iterator(n, beta.iter().map(|b| b.powi(4)));
+        let damping =
+            modal_stiffness.map(|kj| 2.0 * params.viscous_damping + params.material_damping * kj);
+        let forcing_amplitude = match &params.forcing {
+            None => DVector::zeros(n),
+            Some(f) => {
+                error::finite_positive("forcing frequency ω", f.omega)?;
+                project(&f.profile, n, damping[0], beta[0])?
+            }
+        };
+        Ok(Self {
+            tip: DVector::from_element(n, 2.0),
+            params,
+            beta,
+            modal_stiffness,
+            damping,
+            forcing_amplitude,
+        })
+    }
+
+    /// The generic one-degree-of-freedom impact oscillator in this model's form:
+    /// ẍ + cẋ + kx = F cos ωt with the stop at gx = d₀ — any stiffness, damping, forcing
+    /// and tip gain g, not only the cantilever's mode 1. The compliant contact adds
+    /// (k_s/4)g²(x − d₀/g) beyond the stop; the rigid-impact model ([`crate::engine::rigid`]) uses
+    /// only its position. It has no beam profile, so [`Self::modal_state`] refuses it.
+    pub fn oscillator(o: &Oscillator) -> Result<Self, ParameterError> {
+        error::finite_positive("oscillator stiffness k", o.stiffness)?;
+        error::finite_non_negative("oscillator damping c", o.damping)?;
+        error::finite("oscillator forcing amplitude F", o.forcing)?;
+        error::finite_positive("oscillator forcing frequency ω", o.omega)?;
+        error::finite_positive("oscillator tip gain g", o.tip_gain)?;
+        error::finite("oscillator gap d₀", o.gap)?;
+        error::finite_non_negative("oscillator stop stiffness", o.stop_stiffness)?;
+        let params = GalerkinParams::new(1, o.stop_stiffness)
+            .with_gap(o.gap)
+            .with_forcing(Forcing {
+                omega: o.omega,
+                profile: SpatialProfile::Modal(vec![o.forcing]),
+            });
+        Ok(Self {
+            params,
+            beta: Vec::new(),
+            modal_stiffness: DVector::from_element(1, o.stiffness),
+            tip: DVector::from_element(1, o.tip_gain),
+            damping: DVector::from_element(1, o.damping),
+            forcing_amplitude: DVector::from_element(1, o.forcing),
+        })
+    }
+
+    /// A beam model given by the free modes of another discretisation (the finite-element
+    /// beam, [`crate::model::fe`]): K⁻ = diag(k_j), tip values t_j, damping diag(c_j), forcing
+    /// amplitudes f_j, so that K⁺ = K⁻ + (k/4)ttᵀ and F⁺ = F⁻ + (kd₀/4)t as in eq (9). It has
+    /// no continuum profile, so [`Self::modal_state`] refuses it.
+    pub fn from_modes(modes: &FreeModes, params: GalerkinParams) -> Result<Self, ParameterError> {
+        let n = error::count_in_range("modes N", modes.stiffness.len(), 2 * MAX_MODES)?;
+        error::finite_non_negative("stop stiffness k", params.stop_stiffness)?;
+        error::finite("gap d₀", params.gap)?;
+        let same = [&modes.tip, &modes.damping, &modes.forcing]
+            .iter()
+            .all(|v| v.len() == n);
+        if !same {
+            return Err(ParameterError::new(
+                "free-mode lists",
+                "of unequal length",
+                "one entry per mode in each",
+            ));
+        }
+        for j in 0..n {
+            error::finite_positive("modal stiffness", modes.stiffness[j])?;
+            error::finite("modal tip value", modes.tip[j])?;
+            error::finite_non_negative("modal damping", modes.damping[j])?;
+            error::finite("modal forcing amplitude", modes.forcing[j])?;
+        }
+        if let Some(f) = &params.forcing {
+            error::finite_positive("forcing frequency ω", f.omega)?;
+        }
+        Ok(Self {
+            params,
+            beta: Vec::new(),
+            modal_stiffness: DVector::from_column_slice(&modes.stiffness),
+            tip: DVector::from_column_slice(&modes.tip),
+            damping: DVector::from_column_slice(&modes.damping),
+            forcing_amplitude: DVector::from_column_slice(&modes.forcing),
+        })
+    }
+
+    /// N.
+    pub fn modes(&self) -> usize {
+        self.modal_stiffness.len()
+    }
+
+    /// The validated parameters.
+    pub fn params(&self) -> &GalerkinParams {
+        &self.params
+    }
+
+    /// β_j^-, j = 1..N.
+    /// (empty for a [`Self::oscillator`]).
+    pub fn beta(&self) -> &[f64] {
+        &self.beta
+    }
+
+    /// k_j = (β_j^-)⁴, the diagonal of K⁻.
+    pub fn modal_stiffness(&self) -> &DVector<f64> {
+        &self.modal_stiffness
+    }
+
+    /// φ(1): every entry is 2.
+    pub fn tip(&self) -> &DVector<f64> {
+        &self.tip
+    }
+
+    /// Diagonal of \[C\]: 2α + γk_j.
+    pub fn damping(&self) -> &DVector<f64> {
+        &self.damping
+    }
+
+    /// Modal forcing amplitudes f_j = ∫φ_j f ds (zero without forcing).
+    pub fn forcing_amplitude(&self) -> &DVector<f64> {
+        &self.forcing_amplitude
+    }
+
+    /// The forcing frequency ω (0 without forcing).
+    pub fn omega(&self) -> f64 {
+        self.params.forcing.as_ref().map_or(0.0, |f| f.omega)
+    }
+
+    /// A_free(ω) and ωA_free(ω): the steady-state tip amplitude and tip velocity amplitude of
+    /// the forced response with the stop removed, |Σ_j φ_j(1) f_j/(k_j − ω² + iC_jjω)|. The
+    /// paper's unit of displacement (1 at ω = (β₁⁻)² with the corrected eq (37)).
+    pub fn free_tip_amplitude(&self) -> (f64, f64) {
+        let omega = self.omega();
+        let amp: f64 = (0..self.modes())
+            .map(|j| {
+                let re = self.modal_stiffness[j] - omega * omega;
+                let im = self.damping[j] * omega;
+                self.tip[j] * self.forcing_amplitude[j] / (re * re + im * im).sqrt()
+            })
+            .sum::<f64>()
+            .abs();
+        (amp, amp * omega)
+    }
+
+    /// The modal state x = [η; η̇] of a beam with displacement w(s) and velocity w_t(s):
+    /// η_j = ∫₀¹ φ_j w ds, η̇_j = ∫₀¹ φ_j w_t ds (the L² projection onto the N modes; the
+    /// rest of the profile is not represented). Errors if a projection is not finite.
+    pub fn modal_state(
+        &self,
+        displacement: &dyn Fn(f64) -> f64,
+        velocity: &dyn Fn(f64) -> f64,
+    ) -> Result<DVector<f64>, ParameterError> {
+        if self.beta.is_empty() {
+            return Err(ParameterError::new(
+                "initial profile",
+                "a beam profile",
+                "modal states only: a one-degree-of-freedom oscillator has no beam",
+            ));
+        }
+        let n = self.modes();
+        let eta = project_function(displacement, n)?;
+        let vel = project_function(velocity, n)?;
+        let mut x = DVector::zeros(2 * n);
+        for j in 0..n {
+            x[j] = error::finite("projected initial displacement", eta[j])?;
+            x[n + j] = error::finite("projected initial velocity", vel[j])?;
+        }
+        Ok(x)
+    }
+
+    /// \[K^±\]: diag(k_j), plus k·11ᵀ in contact (eq 9).
+    pub fn stiffness(&self, region: Region) -> DMatrix<f64> {
+        let mut k = DMatrix::from_diagonal(&self.modal_stiffness);
+        if region == Region::Contact {
+            k += (self.params.stop_stiffness / 4.0) * &self.tip * self.tip.transpose();
+        }
+        k
+    }
+
+    /// \[C\] = diag(2α + γk_j) (eq 34).
+    pub fn damping_matrix(&self) -> DMatrix<f64> {
+        DMatrix::from_diagonal(&self.damping)
+    }
+
+    /// The constant part of F^±: zero in free flight, (k d₀/4)φ(1) in contact (eq 9).
+    pub fn stop_preload(&self, region: Region) -> DVector<f64> {
+        match region {
+            Region::Free => DVector::zeros(self.modes()),
+            Region::Contact => (self.params.stop_stiffness * self.params.gap / 4.0) * &self.tip,
+        }
+    }
+
+    /// F^±(t) (eq 9).
+    pub fn force(&self, t: f64, region: Region) -> DVector<f64> {
+        let omega = self.params.forcing.as_ref().map_or(0.0, |f| f.omega);
+        &self.forcing_amplitude * (omega * t).cos() + self.stop_preload(region)
+    }
+
+    /// The switching function φ(1)ᵀη − d₀: negative in free flight, positive in contact.
+    pub fn switching_function(&self, eta: &DVector<f64>) -> f64 {
+        self.tip.dot(eta) - self.params.gap
+    }
+
+    /// The region a displacement η lies in (the surface itself counts as contact, §2.1).
+    pub fn region_of(&self, eta: &DVector<f64>) -> Region {
+        if self.switching_function(eta) >= 0.0 {
+            Region::Contact
+        } else {
+            Region::Free
+        }
+    }
+
+    /// The region a state x = [η; η̇] at time t starts in: contact if d > d₀; on the
+    /// surface, contact if the tip moves into the stop, or — at zero velocity — if its
+    /// free-flight acceleration points into the stop. So the paper's start from rest at
+    /// d₀ = 0, written x⁺(0) = 0 in §5.2, begins in contact rather than with a switch.
+    pub fn starting_region(&self, x: &DVector<f64>, t: f64) -> Region {
+        let n = self.modes();
+        let (eta, vel) = (x.rows(0, n), x.rows(n, n));
+        let d = self.tip.dot(&eta) - self.params.gap;
+        let v = self.tip.dot(&vel);
+        let force = self.force(t, Region::Free);
+        let a: f64 = (0..n)
+            .map(|j| {
+                self.tip[j]
+                    * (force[j] - self.modal_stiffness[j] * eta[j] - self.damping[j] * vel[j])
+            })
+            .sum();
+        let inward = d > 0.0 || (d == 0.0 && (v > 0.0 || (v == 0.0 && a > 0.0)));
+        if inward {
+            Region::Contact
+        } else {
+            Region::Free
+        }
+    }
+
+    /// \[A^±\] = [[0, I], [−K^±, −C]] of eq (35), 2N × 2N.
+    pub fn state_matrix(&self, region: Region) -> DMatrix<f64> {
+        let n = self.modes();
+        let mut a = DMatrix::zeros(2 * n, 2 * n);
+        a.view_mut((0, n), (n, n)).fill_with_identity();
+        a.view_mut((n, 0), (n, n))
+            .copy_from(&(-self.stiffness(region)));
+        a.view_mut((n, n), (n, n))
+            .copy_from(&(-self.damping_matrix()));
+        a
+    }
+}
+
+/// f_j = ∫₀¹ φ_j f ds for j = 1..n.
+fn project(
+    profile: &SpatialProfile,
+    n: usize,
+    c11: f64,
+    beta1: f64,
+) -> Result<DVector<f64>, ParameterError> {
+    let k1 = beta1.powi(4);
+    let phi1 = continuum::free_mode(1)?;
+    let amplitudes = match profile {
+        SpatialProfile::Modal(v) => {
+            let mut f = DVector::zeros(n);
+            for (j, &a) in v.iter().take(n).enumerate() {
+                f[j] = error::finite("modal forcing amplitude", a)?;
+            }
+            f
+        }
+        SpatialProfile::UnitTipAtResonance => {
+            let a = c11 * beta1 * beta1 / 2.0;
+            project_function(&|s| a * phi1.value(s), n)?
+        }
+        SpatialProfile::PaperEq37AsPrinted => {
+            let zeta1 = c11 / (2.0 * beta1 * beta1);
+            error::finite_positive("first-mode damping ratio ζ₁ (eq 37 divides by it)", zeta1)?;
+            project_function(&|s| k1 * phi1.value(s) / (4.0 * zeta1), n)?
+        }
+        SpatialProfile::Function(f) => project_function(f.as_ref(), n)?,
+    };
+    for a in amplitudes.iter() {
+        error::finite("projected forcing amplitude", *a)?;
+    }
+    Ok(amplitudes)
+}
+
+fn project_function(f: &dyn Fn(f64) -> f64, n: usize) -> Result<DVector<f64>, ParameterError> {
+    let modes: Vec<_> = (1..=n)
+        .map(continuum::free_mode)
+        .collect::<Result<_, _>>()?;
+    let quad = Quadrature::for_wavenumber(modes[n - 1].beta);
+    let fs: Vec<f64> = quad.nodes.iter().map(|&s| f(s)).collect();
+    Ok(DVector::from_iterator(
+        n,
+        modes.iter().map(|m| {
+            quad.nodes
+                .iter()
+                .zip(&quad.weights)
+                .zip(&fs)
+                .map(|((&s, &w), &fv)| w * m.value(s) * fv)
+                .sum::<f64>()
+        }),
+    ))
+}
+
+/// Eigenvalues λ_1 < … < λ_N of K⁺ = diag(d) + k·11ᵀ (Fig 2), from the secular equation
+/// 1 + k Σ_j 1/(d_j − λ) = 0. Each root is bracketed (interlacing: d_i < λ_i < d_{i+1},
+/// d_N < λ_N ≤ d_N + kN) and solved in the shifted variable μ = λ − d_i, so even
+/// λ_i − d_i ≈ k ≪ d_i keeps full relative accuracy. `d` must be strictly increasing.
+pub fn contact_eigenvalues(d: &[f64], stop_stiffness: f64) -> Vec<f64> {
+    let n = d.len();
+    let k = stop_stiffness;
+    if k == 0.0 {
+        return d.to_vec();
+    }
+    (0..n)
+        .map(|i| {
+            let width = if i + 1 < n {
+                d[i + 1] - d[i]
+            } else {
+                k * n as f64
+            };
+            // The secular function divided by k, g(μ) = 1/k + Σ_j 1/(d_j − d_i − μ): the same
+            // roots, and no overflow for k up to f64::MAX. g → −∞ as μ → 0⁺ and is ≥ 0 at the
+            // upper end (for i = N: each term is ≥ −1/(kN), N of them).
+            let g = |mu: f64| 1.0 / k + (0..n).map(|j| 1.0 / ((d[j] - d[i]) - mu)).sum::<f64>();
+            let hi = if i + 1 < n {
+                width * (1.0 - 4.0 * f64::EPSILON)
+            } else {
+                width
+            };
+            // a lower end with g < 0: the root is ≈ min(k, width) for any k, so start
+            // below that and halve (g(μ) ≈ −1/μ dominates as μ shrinks)
+            let mut lo = 0.5 * k.min(width);
+            while g(lo) >= 0.0 && lo > f64::MIN_POSITIVE * 4.0 {
+                lo *= 0.5;
+            }
+            let mu =
+                brent(g, lo, hi, 1e-15).unwrap_or(if g(lo).abs() < g(hi).abs() { lo } else { hi });
+            d[i] + mu
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn contact_stiffness_is_diagonal_plus_k_times_ones() {
+        let m = GalerkinModel::new(GalerkinParams::new(3, 7.0)).unwrap();
+        let kp = m.stiffness(Region::Contact);
+        let km = m.stiffness(Region::Free);
+        for i in 0..3 {
+            for j in 0..3 {
+                // entries are sums of two doubles: exact to one rounding of k_j
+                let expected = km[(i, j)] + 7.0;
+                assert!((kp[(i, j)] - expected).abs() <= 4.0 * f64::EPSILON * expected);
+            }
+        }
+    }
+
+    #[test]
+    fn bad_parameters_are_typed_errors() {
+        let err = |p: GalerkinParams| GalerkinModel::new(p).unwrap_err().to_string();
+        assert!(err(GalerkinParams::new(0, 1.0)).starts_with("invalid modes N: got 0"));
+        assert!(err(GalerkinParams::new(2, -1.0)).starts_with("invalid stop stiffness k"));
+        assert!(err(GalerkinParams::new(2, f64::INFINITY)).contains("finite"));
+        assert!(err(GalerkinParams::new(2, 1.0).with_gap(f64::NAN)).contains("gap d₀"));
+        assert!(err(GalerkinParams::new(2, 1.0).with_zeta1(-0.1)).contains("material damping"));
+        let bad_omega = GalerkinParams::new(2, 1.0).with_forcing(Forcing::paper(0.0));
+        assert!(err(bad_omega).contains("forcing frequency ω"));
+    }
+}

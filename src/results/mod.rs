@@ -1,0 +1,10 @@
+//! The paper's results: one scene per result, their plots, tables, citations and comparisons, and the book.
+
+pub mod citation;
+pub mod diff;
+pub mod render;
+pub mod scene;
+pub mod scenes;
+
+#[cfg(feature = "book")]
+pub mod book;

@@ -1,0 +1,352 @@
+//! The [`Scene`] contract: one result of the paper, from its parameters to plain data, its
+//! key numbers, its verdict and its rendering. The registry of scenes is
+//! `scenes::all` (in the results band); the command line, the book and the tests iterate it.
+//!
+//! A scene declares exactly the parameters its result needs (at the book's resolution and
+//! at a reduced one for the tests), computes only that, and returns serialisable data.
+//! Rendering is separate and does no numerics. Running one scene runs nothing else.
+
+use crate::base::provenance::Provenance;
+use crate::base::report::KeyNumbers;
+use crate::error::Error;
+use crate::results::render::RenderError;
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// How much work a scene does: the book's full resolution, or a reduced one for tests.
+/// Scenes whose full resolution is already cheap use it for both.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Resolution {
+    /// As in the book.
+    Book,
+    /// Reduced, for the test suite.
+    Test,
+}
+
+/// Reports the progress of long work (sweeps). The command line shows a bar on a
+/// terminal; the library itself prints nothing.
+pub trait Progress: Sync {
+    /// A task of `total` units named `what` starts; its units are reported to the handle,
+    /// and it ends when the handle is dropped.
+    fn task(&self, what: &str, total: u64) -> Box<dyn Task + '_>;
+}
+
+/// One task's progress.
+pub trait Task: Sync {
+    /// `units` more are done.
+    fn advance(&self, units: u64);
+}
+
+/// Progress that goes nowhere.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Silent;
+
+impl Task for Silent {
+    fn advance(&self, _: u64) {}
+}
+
+impl Progress for Silent {
+    fn task(&self, _: &str, _: u64) -> Box<dyn Task + '_> {
+        Box::new(Silent)
+    }
+}
+
+/// How a result of the paper fared.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Outcome {
+    /// Our verified number agrees with the paper's to its printed precision, or the claim
+    /// holds in every case checked.
+    Reproduced,
+    /// Some of the claim holds, some does not.
+    Partly,
+    /// A verified computation gives a different answer (explained in the errata).
+    NotReproduced,
+    /// A method result with no claim of the paper to check.
+    NoClaim,
+    /// A result beyond the paper (no claim of it to check).
+    Extension,
+}
+
+impl std::fmt::Display for Outcome {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Outcome::Reproduced => "reproduced",
+            Outcome::Partly => "partly reproduced",
+            Outcome::NotReproduced => "not reproduced",
+            Outcome::NoClaim => "a check of our methods",
+            Outcome::Extension => "beyond the paper",
+        })
+    }
+}
+
+/// A scene's verdict on the paper's claim, computed from its data.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Verdict {
+    /// The outcome.
+    pub outcome: Outcome,
+    /// The evidence in one line, with our numbers.
+    pub evidence: String,
+}
+
+/// Plots and tables of a scene.
+#[derive(Debug, Clone, Default)]
+pub struct Rendered {
+    /// An SVG plot.
+    pub svg: String,
+    /// The main markdown table.
+    pub table: String,
+    /// Further markdown tables, written as `<name>.md` beside `table.md`.
+    pub extra_tables: Vec<(&'static str, String)>,
+}
+
+impl Rendered {
+    /// One plot and one table.
+    pub fn new(svg: String, table: String) -> Self {
+        Self {
+            svg,
+            table,
+            extra_tables: Vec::new(),
+        }
+    }
+}
+
+/// One result of the paper.
+pub trait Scene: Sync {
+    /// The name on the command line and of its output directory.
+    const NAME: &'static str;
+    /// Where in the paper.
+    const PAPER: &'static str;
+    /// What it computes, in one line.
+    const SUMMARY: &'static str;
+    /// The paper's claim, in one sentence (markdown; "—" for a methods result).
+    const CLAIM: &'static str;
+    /// How the numbers are computed and verified, in a sentence or two (for citations).
+    const METHOD: &'static str;
+    /// The key numbers that sum the result up, as (label, key) (shown on the book's landing
+    /// page).
+    const HEADLINE: &'static [(&'static str, &'static str)];
+    /// Its chapter in the book (a file under `book/src/`).
+    const CHAPTER: &'static str;
+    /// Whether it measures wall times: such a scene runs alone, after the others, so that
+    /// its timings do not share the cores with another scene's work.
+    const TIMED: bool = false;
+    /// The parameters.
+    type Params: Serialize + Clone + Send + Sync;
+    /// The computed data.
+    type Data: Serialize;
+    /// The parameters at a resolution.
+    fn params(resolution: Resolution) -> Self::Params;
+    /// The computation (pure, apart from reporting progress).
+    fn compute(params: &Self::Params, progress: &dyn Progress) -> Result<Self::Data, Error>;
+    /// The key numbers, each rounded to the digits the method resolves.
+    fn key_numbers(data: &Self::Data) -> KeyNumbers;
+    /// The verdict on the paper's claim.
+    fn verdict(data: &Self::Data) -> Verdict;
+    /// Plots and tables.
+    fn render(data: &Self::Data) -> Result<Rendered, RenderError>;
+}
+
+/// What a scene run produces.
+#[derive(Debug, Clone)]
+pub struct SceneOutput {
+    /// Rounded key numbers (for `--json`, snapshots and the book).
+    pub key_numbers: KeyNumbers,
+    /// The verdict.
+    pub verdict: Verdict,
+    /// All computed data, with the parameters.
+    pub data: serde_json::Value,
+    /// The parameters the data were computed with.
+    pub params: serde_json::Value,
+    /// Plots and tables.
+    pub rendered: Rendered,
+    /// Where the numbers come from.
+    pub provenance: Provenance,
+}
+
+/// A scene as the registry holds it (object-safe).
+pub trait Entry: Sync {
+    /// [`Scene::NAME`].
+    fn name(&self) -> &'static str;
+    /// [`Scene::PAPER`].
+    fn paper(&self) -> &'static str;
+    /// [`Scene::SUMMARY`].
+    fn summary(&self) -> &'static str;
+    /// [`Scene::CLAIM`].
+    fn claim(&self) -> &'static str;
+    /// [`Scene::CHAPTER`].
+    fn chapter(&self) -> &'static str;
+    /// [`Scene::METHOD`].
+    fn method(&self) -> &'static str;
+    /// [`Scene::HEADLINE`].
+    fn headline(&self) -> &'static [(&'static str, &'static str)];
+    /// [`Scene::TIMED`].
+    fn timed(&self) -> bool;
+    /// Whether the tests run this scene at a reduced resolution (its parameters differ
+    /// between [`Resolution::Test`] and [`Resolution::Book`]).
+    fn reduced_for_tests(&self) -> bool;
+    /// The folder under `src/scenes/` that holds it (its fingerprint's name).
+    fn module(&self) -> &'static str;
+    /// Computes, picks the key numbers and the verdict, renders.
+    fn run(&self, resolution: Resolution, progress: &dyn Progress) -> Result<SceneOutput, Error>;
+}
+
+impl<S: Scene> Entry for S {
+    fn name(&self) -> &'static str {
+        S::NAME
+    }
+    fn paper(&self) -> &'static str {
+        S::PAPER
+    }
+    fn summary(&self) -> &'static str {
+        S::SUMMARY
+    }
+    fn claim(&self) -> &'static str {
+        S::CLAIM
+    }
+    fn chapter(&self) -> &'static str {
+        S::CHAPTER
+    }
+    fn method(&self) -> &'static str {
+        S::METHOD
+    }
+    fn headline(&self) -> &'static [(&'static str, &'static str)] {
+        S::HEADLINE
+    }
+    fn timed(&self) -> bool {
+        S::TIMED
+    }
+    fn reduced_for_tests(&self) -> bool {
+        let json = |r| serde_json::to_value(S::params(r)).ok();
+        json(Resolution::Test) != json(Resolution::Book)
+    }
+    fn module(&self) -> &'static str {
+        module_of::<S>()
+    }
+    fn run(&self, resolution: Resolution, progress: &dyn Progress) -> Result<SceneOutput, Error> {
+        run_with::<S>(&S::params(resolution), resolution, progress)
+    }
+}
+
+/// The folder under `src/scenes/` that holds scene type `S` (`fig3abc` for `Fig3abc`).
+pub fn module_of<S: Scene>() -> &'static str {
+    let path = std::any::type_name::<S>();
+    path.split("::scenes::")
+        .nth(1)
+        .and_then(|rest| rest.split("::").next())
+        .unwrap_or("")
+}
+
+/// Runs scene `S` with parameters of the caller's choosing (a variant of its model, say) and
+/// gives the same output as [`Entry::run`] does for its own. `resolution` is recorded in
+/// the provenance.
+pub fn run_with<S: Scene>(
+    params: &S::Params,
+    resolution: Resolution,
+    progress: &dyn Progress,
+) -> Result<SceneOutput, Error> {
+    let provenance = Provenance::of_scene(
+        module_of::<S>(),
+        match resolution {
+            Resolution::Book => "book",
+            Resolution::Test => "test",
+        },
+    );
+    let data = S::compute(params, progress)?;
+    output_of::<S>(params, &data, provenance)
+}
+
+/// The key numbers, verdict and rendering of data computed elsewhere (a sweep computed in
+/// shards and merged): the same output as [`Entry::run`] gives for the same data.
+pub fn output_of<S: Scene>(
+    params: &S::Params,
+    data: &S::Data,
+    provenance: Provenance,
+) -> Result<SceneOutput, Error> {
+    let to_json = |what, v: Result<serde_json::Value, serde_json::Error>| {
+        v.map_err(|e| Error::Unsupported(format!("scene {} {what}: {e}", S::NAME)))
+    };
+    let json = to_json("data", serde_json::to_value(data))?;
+    let params = to_json("parameters", serde_json::to_value(params))?;
+    Ok(SceneOutput {
+        key_numbers: S::key_numbers(data),
+        verdict: S::verdict(data),
+        rendered: S::render(data)?,
+        data: json,
+        params,
+        provenance,
+    })
+}
+
+/// Writes `text` to `path` atomically: into a temporary file beside it, then renamed, so
+/// an interrupted run never leaves a truncated file or a fresh file beside stale ones.
+pub fn write_atomically(path: &Path, text: &str) -> Result<(), Error> {
+    let io = |source| Error::Io {
+        path: path.display().to_string(),
+        source,
+    };
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let tmp = path.with_file_name(format!(".{name}.{}.tmp", std::process::id()));
+    std::fs::write(&tmp, text).map_err(io)?;
+    std::fs::rename(&tmp, path).map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        io(e)
+    })
+}
+
+/// The key numbers as a citable document: the scene, the paper's claim, the method, the
+/// parameters, the provenance, the verdict and every number with its uncertainty (the
+/// shape of `key_numbers.json` and of `cantilever scene NAME --json`).
+pub fn key_numbers_document(spec: &dyn Entry, out: &SceneOutput) -> serde_json::Value {
+    serde_json::json!({
+        "scene": spec.name(),
+        "paper": spec.paper(),
+        "claim": spec.claim(),
+        "method": spec.method(),
+        "parameters": out.params,
+        "provenance": out.provenance,
+        "verdict": out.verdict,
+        "key_numbers": out.key_numbers.to_json(),
+    })
+}
+
+/// Writes `plot.svg`, `table.md` (and any further tables), `data.json` (with its
+/// provenance), `key_numbers.json` ([`key_numbers_document`]) and `verdict.json` into
+/// `dir`, each atomically.
+pub fn write(spec: &dyn Entry, out: &SceneOutput, dir: &Path) -> Result<(), Error> {
+    std::fs::create_dir_all(dir).map_err(|source| Error::Io {
+        path: dir.display().to_string(),
+        source,
+    })?;
+    let json = |v: &serde_json::Value| serde_json::to_string_pretty(v).unwrap_or_default();
+    let mut files = vec![
+        ("plot.svg".to_string(), out.rendered.svg.clone()),
+        ("table.md".to_string(), out.rendered.table.clone()),
+        (
+            "data.json".to_string(),
+            json(&serde_json::json!({
+                "scene": spec.name(),
+                "provenance": out.provenance,
+                "data": out.data,
+            })),
+        ),
+        (
+            "key_numbers.json".to_string(),
+            json(&key_numbers_document(spec, out)),
+        ),
+        (
+            "verdict.json".to_string(),
+            json(&serde_json::to_value(&out.verdict).unwrap_or_default()),
+        ),
+    ];
+    for (name, table) in &out.rendered.extra_tables {
+        files.push((format!("{name}.md"), table.clone()));
+    }
+    for (name, text) in files {
+        write_atomically(&dir.join(name), &text)?;
+    }
+    Ok(())
+}

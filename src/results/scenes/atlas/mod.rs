@@ -1,0 +1,237 @@
+//! Scene `atlas`: beyond the paper — the multi-tap atlas ([`crate::analysis::atlas`]): the stable
+//! periodic orbits (m, n) of the N = 10 compliant model over k/k₁ 1…10⁴ and
+//! ω/(β₁⁻)² 0.5…3 (Figure 4's ζ₁ = 0.01 and d₀ = 0), how many coexist, and how many
+//! contacts per forcing period the beam makes ("drum rolls": n/m ≥ 2). The paper shows
+//! multiple taps at single parameter points (Figures 4, 6(b), 9); the atlas maps where
+//! they live.
+
+pub mod render;
+
+use crate::analysis::atlas::{self, AtlasData, AtlasParams, Cell};
+use crate::error::Error;
+use crate::base::report::KeyNumbers;
+use crate::results::scene::{Outcome, Progress, Rendered, Resolution, Scene, Verdict};
+use std::collections::BTreeMap;
+
+/// The scene.
+pub struct Atlas;
+
+/// Every cell of the atlas, row by row.
+pub fn cells(d: &AtlasData) -> impl Iterator<Item = &Cell> {
+    d.rows.iter().flat_map(|r| r.cells.iter())
+}
+
+/// Cells per (m, n) of the orbit from rest (None: rest reaches no stable orbit of
+/// period ≤ max_m), most frequent first.
+pub fn rest_labels(d: &AtlasData) -> Vec<(Option<(u64, usize)>, usize)> {
+    let mut count: BTreeMap<Option<(u64, usize)>, usize> = BTreeMap::new();
+    for c in cells(d) {
+        *count
+            .entry(c.rest().map(|a| (a.period_m, a.impacts_n)))
+            .or_default() += 1;
+    }
+    let mut v: Vec<_> = count.into_iter().collect();
+    v.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
+    v
+}
+
+/// An (m, n) label as text.
+pub fn label(l: Option<(u64, usize)>) -> String {
+    l.map_or("none".to_string(), |(m, n)| format!("({m},{n})"))
+}
+
+/// The convergence check: cells checked, cells where the check's orbit from rest is one
+/// of the cell's, orbits the further starts found that the cell missed, and the cells
+/// where they did.
+pub fn check_summary(d: &AtlasData) -> (usize, usize, usize, usize) {
+    let checked: Vec<&Cell> = cells(d).filter(|c| c.check.is_some()).collect();
+    let agree = checked
+        .iter()
+        .filter(|c| c.check_agrees() == Some(true))
+        .count();
+    let missed: usize = checked
+        .iter()
+        .filter_map(|c| c.check.as_ref().map(|k| k.missed))
+        .sum();
+    let missed_cells = checked
+        .iter()
+        .filter(|c| c.check.as_ref().is_some_and(|k| k.missed > 0))
+        .count();
+    (checked.len(), agree, missed, missed_cells)
+}
+
+/// The checked cells where the check's orbit from rest is not one of the cell's, as text.
+fn check_disagreements(d: &AtlasData) -> String {
+    let mut v = Vec::new();
+    for r in &d.rows {
+        for (j, c) in r.cells.iter().enumerate() {
+            if c.check_agrees() == Some(false) {
+                let check = c.check.as_ref().and_then(|k| k.from_rest);
+                v.push(format!(
+                    "N = 20 {}, N = 10 {} at k = {}k₁, ω = {:.2}",
+                    label(check),
+                    label(c.rest().map(|a| (a.period_m, a.impacts_n))),
+                    crate::base::report::pretty(r.k_over_k1, 3),
+                    d.omega_over_w1[j]
+                ));
+            }
+        }
+    }
+    if v.is_empty() {
+        "none".into()
+    } else {
+        v.join("; ")
+    }
+}
+
+/// The orbit from rest along k in the column nearest ω = 2(β₁⁻)² (Figure 5's), as runs
+/// "from k: label".
+fn column_near_two(d: &AtlasData) -> String {
+    let Some(j) = (0..d.omega_over_w1.len())
+        .min_by(|&a, &b| (d.omega_over_w1[a] - 2.0).abs().total_cmp(&(d.omega_over_w1[b] - 2.0).abs()))
+    else {
+        return String::new();
+    };
+    let mut runs: Vec<String> = Vec::new();
+    let mut previous = None;
+    for r in &d.rows {
+        let l = label(r.cells[j].rest().map(|a| (a.period_m, a.impacts_n)));
+        if previous.as_ref() != Some(&l) {
+            runs.push(format!("{l} from {}", crate::base::report::pretty(r.k_over_k1, 3)));
+            previous = Some(l);
+        }
+    }
+    format!("ω = {:.3}: {}", d.omega_over_w1[j], runs.join(", "))
+}
+
+/// The rest labels along ω of one row, as text.
+fn row_labels(d: &AtlasData, i: usize) -> String {
+    d.rows[i]
+        .cells
+        .iter()
+        .map(|c| label(c.rest().map(|a| (a.period_m, a.impacts_n))))
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+impl Scene for Atlas {
+    const NAME: &'static str = "atlas";
+    const PAPER: &'static str = "beyond §5.3";
+    const SUMMARY: &'static str =
+        "multi-tap atlas: stable orbits (m, n) and their coexistence over k and ω, N = 10";
+    const CLAIM: &'static str = "None: it shows multiple taps at single parameter points (Figures 4, 6(b), 9), not where in $(k, \\omega)$ they occur.";
+    const CHAPTER: &'static str = "atlas.md";
+    const METHOD: &'static str = "each row is one k, swept up in ω (128 × 128 cells, k/k₁ log-spaced 1–10⁴, ω/(β₁⁻)² linear 0.5–3): a cell's stable periodic orbits come from natural continuation of the previous cell's orbits and from three seeded starts (rest and two random states, transients of up to 300 periods, read after every 100), each converged by Newton shooting to a relative residual of 1e-12, reduced to its least period m ≤ 8, kept if its Floquet multipliers lie inside the unit circle, and counted once; every 16th row and column is checked with N = 20 from rest and with 16 further random starts";
+    const HEADLINE: &'static [(&'static str, &'static str)] = &[
+        ("cells tapping more than once per forcing period (from rest)", "multi-tap cells"),
+        ("cells with coexisting stable orbits", "coexisting cells"),
+        ("N = 20 check: orbit from rest among the N = 10 cell's orbits", "N=20 check agrees"),
+    ];
+    type Params = AtlasParams;
+    type Data = AtlasData;
+
+    fn params(resolution: Resolution) -> AtlasParams {
+        match resolution {
+            Resolution::Book => AtlasParams::book(),
+            Resolution::Test => AtlasParams::test(),
+        }
+    }
+
+    fn compute(p: &AtlasParams, progress: &dyn Progress) -> Result<AtlasData, Error> {
+        let task = progress.task("atlas cells", (p.k_points * p.omega_points) as u64);
+        atlas::compute(p, &|| task.advance(1))
+    }
+
+    fn key_numbers(d: &AtlasData) -> KeyNumbers {
+        let mut k = KeyNumbers::default();
+        // every number here is a count of cells or orbits: exact integers of the computed
+        // atlas (each orbit converged to 1e-12 and its stability by its multipliers)
+        let all: Vec<&Cell> = cells(d).collect();
+        k.integer("cells", all.len() as i64);
+        let count = |f: &dyn Fn(&Cell) -> bool| all.iter().filter(|c| f(c)).count() as i64;
+        k.integer(
+            "multi-tap cells",
+            count(&|c| c.rest().is_some_and(|a| a.impacts_n > a.period_m as usize)),
+        );
+        k.integer(
+            "drum-roll cells (n/m at least 2)",
+            count(&|c| c.rest().is_some_and(|a| a.impacts_n >= 2 * a.period_m as usize)),
+        );
+        k.integer("coexisting cells", count(&|c| c.attractors.len() > 1));
+        k.integer(
+            "most coexisting stable orbits in a cell",
+            all.iter().map(|c| c.attractors.len()).max().unwrap_or(0) as i64,
+        );
+        k.integer("cells with no stable orbit from rest", count(&|c| c.from_rest.is_none()));
+        k.integer(
+            "cells with an unsettled start",
+            count(&|c| c.unsettled_starts > 0),
+        );
+        let labels = rest_labels(d);
+        k.integer("distinct (m,n) from rest", labels.iter().filter(|l| l.0.is_some()).count() as i64);
+        k.text(
+            "cells per (m,n) from rest",
+            labels
+                .iter()
+                .map(|(l, n)| format!("{} {n}", label(*l)))
+                .collect::<Vec<_>>()
+                .join(", "),
+        );
+        if let Some((taps, at)) = d
+            .rows
+            .iter()
+            .flat_map(|r| {
+                r.cells.iter().enumerate().filter_map(move |(j, c)| {
+                    c.rest().map(|a| (a.taps_per_period(), (r.k_over_k1, j)))
+                })
+            })
+            .max_by(|a, b| a.0.total_cmp(&b.0))
+        {
+            k.text(
+                "most taps per forcing period from rest",
+                format!(
+                    "{taps} at k = {}k₁, ω = {:.3}(β₁⁻)²",
+                    crate::base::report::pretty(at.0, 3),
+                    d.omega_over_w1[at.1]
+                ),
+            );
+        }
+        let (checked, agree, missed, missed_cells) = check_summary(d);
+        k.text("N=20 check agrees", format!("{agree} of {checked}"));
+        k.text("N=20 check disagreements", check_disagreements(d));
+        k.text("orbits from rest along k near omega=2", column_near_two(d));
+        k.text(
+            "orbits missed (further starts)",
+            format!("{missed} in {missed_cells} of {checked} cells"),
+        );
+        k.text("orbits from rest at the smallest k", row_labels(d, 0));
+        k.text("orbits from rest at the largest k", row_labels(d, d.rows.len() - 1));
+        k
+    }
+
+    fn verdict(d: &AtlasData) -> Verdict {
+        let all = cells(d).count();
+        let multi = cells(d)
+            .filter(|c| c.rest().is_some_and(|a| a.impacts_n > a.period_m as usize))
+            .count();
+        let coexist = cells(d).filter(|c| c.attractors.len() > 1).count();
+        let (checked, agree, _, _) = check_summary(d);
+        let pct = |x: usize| 100.0 * x as f64 / all.max(1) as f64;
+        Verdict {
+            outcome: Outcome::Extension,
+            evidence: format!(
+                "From rest the beam taps more than once per forcing period in {:.0}% of the {all} cells; {:.0}% have two or more coexisting stable orbits; with N = 20 the orbit from rest is one of the N = 10 cell's in {agree} of {checked} checked cells",
+                pct(multi),
+                pct(coexist)
+            ),
+        }
+    }
+
+    fn render(d: &AtlasData) -> Result<Rendered, crate::results::render::RenderError> {
+        Ok(Rendered {
+            svg: render::plot(d)?,
+            table: render::labels_table(d),
+            extra_tables: vec![("decades", render::decades_table(d))],
+        })
+    }
+}

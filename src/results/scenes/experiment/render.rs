@@ -1,0 +1,155 @@
+//! The experiment's plot — the Figure 9 velocity in milliseconds with the contact cluster
+//! magnified and the periods of modes 2–4 as scale bars, and the spectrum in hertz with the
+//! free frequencies — and its table of beam theory.
+
+use super::ExperimentData;
+use crate::results::render::{
+    draw_legend, drawing, markdown_table, solid_key, styled_mesh, RenderError, CAPTION_FONT,
+    LABEL_FONT, WIDTH,
+};
+use plotters::prelude::*;
+
+const FREE: RGBColor = RGBColor(0, 114, 178);
+const CONTACT: RGBColor = RGBColor(213, 40, 0);
+
+/// The SVG plot.
+pub fn plot(d: &ExperimentData) -> Result<String, RenderError> {
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (WIDTH, 820)).into_drawing_area();
+        root.fill(&WHITE).map_err(drawing)?;
+        let (top, bottom) = root.split_vertically(420);
+        // (a) the contact cluster, with a margin of a tenth of the period either side
+        let margin = 0.1 * d.forcing.1 * 1e3;
+        let (c0, c1) = match (d.contacts_ms.first(), d.contacts_ms.last()) {
+            (Some(a), Some(b)) => (a.0 - margin, b.1 + margin),
+            _ => (0.0, d.forcing.1 * 1e3),
+        };
+        let inside: Vec<&(f64, f64, bool)> =
+            d.samples.iter().filter(|s| s.0 >= c0 && s.0 <= c1).collect();
+        let (lo, hi) = inside
+            .iter()
+            .fold((0.0_f64, 0.0_f64), |(a, b), s| (a.min(s.1), b.max(s.1)));
+        let pad = 0.1 * (hi - lo).max(1e-9);
+        let mut chart = ChartBuilder::on(&top)
+            .caption("(a) the contacts of one period, in milliseconds", CAPTION_FONT)
+            .margin(8)
+            .margin_right(28)
+            .x_label_area_size(44)
+            .y_label_area_size(64)
+            .build_cartesian_2d(c0..c1, (lo - pad)..(hi + 4.0 * pad))
+            .map_err(drawing)?;
+        styled_mesh(&mut chart)
+            .x_desc("t (ms) from the start of the forcing period")
+            .y_desc("v / (ω · free amplitude)")
+            .draw()
+            .map_err(drawing)?;
+        let mut first = [true, true];
+        for w in inside.windows(2) {
+            let c = if w[0].2 { CONTACT } else { FREE };
+            let s = chart
+                .draw_series(LineSeries::new(vec![(w[0].0, w[0].1), (w[1].0, w[1].1)], c.stroke_width(2)))
+                .map_err(drawing)?;
+            let i = usize::from(w[0].2);
+            if first[i] {
+                s.label(if w[0].2 { "in contact" } else { "free flight" })
+                    .legend(solid_key(c.stroke_width(2)));
+                first[i] = false;
+            }
+        }
+        // scale bars: the periods of modes 2, 3, 4
+        for (j, t) in d.mode_periods_ms.iter().enumerate().take(4).skip(1) {
+            let y = hi + pad * (1.0 + 0.9 * (j - 1) as f64);
+            let x = c0 + 0.02 * (c1 - c0);
+            chart
+                .draw_series(LineSeries::new(vec![(x, y), (x + t, y)], BLACK.stroke_width(3)))
+                .map_err(drawing)?;
+            chart
+                .draw_series(std::iter::once(Text::new(
+                    format!("mode {} period, {t:.1} ms", j + 1),
+                    (x + t + 0.01 * (c1 - c0), y + 0.3 * pad),
+                    LABEL_FONT,
+                )))
+                .map_err(drawing)?;
+        }
+        draw_legend(&mut chart, SeriesLabelPosition::LowerRight)?;
+        // (b) the spectrum in hertz
+        let top_v = d.spectrum.iter().map(|s| s.0).fold(0.0, f64::max);
+        let least = d.spectrum.iter().map(|s| s.0).fold(f64::INFINITY, f64::min);
+        let floor = (least / 3.0).max(top_v * 1e-12).max(1e-300);
+        let fmax = d.spectrum.last().map_or(1.0, |s| s.1) * 1.04;
+        let mut chart = ChartBuilder::on(&bottom)
+            .caption("(b) the spectrum in hertz, free frequencies dashed", CAPTION_FONT)
+            .margin(8)
+            .margin_right(28)
+            .x_label_area_size(44)
+            .y_label_area_size(64)
+            .build_cartesian_2d(0.0..fmax, (floor..top_v * 3.0).log_scale())
+            .map_err(drawing)?;
+        styled_mesh(&mut chart)
+            .x_desc("frequency (Hz)")
+            .y_desc("Vₙ / (ω · free amplitude)")
+            .y_label_formatter(&|y| format!("{y:.0e}"))
+            .draw()
+            .map_err(drawing)?;
+        let width = 0.3 * d.forcing.0;
+        chart
+            .draw_series(d.spectrum.iter().map(|&(v, f)| {
+                Rectangle::new([(f - width, floor), (f + width, v.max(floor))], FREE.filled())
+            }))
+            .map_err(drawing)?;
+        for (i, f) in d.mode_frequencies.iter().enumerate() {
+            if *f > fmax {
+                continue;
+            }
+            chart
+                .draw_series(DashedLineSeries::new(
+                    vec![(*f, floor), (*f, top_v * 3.0)],
+                    4,
+                    4,
+                    BLACK.mix(0.5).stroke_width(1),
+                ))
+                .map_err(drawing)?;
+            chart
+                .draw_series(std::iter::once(Text::new(
+                    format!("mode {}: {f:.0} Hz", i + 1),
+                    (*f + 2.0, top_v * 1.6),
+                    LABEL_FONT,
+                )))
+                .map_err(drawing)?;
+        }
+        root.present().map_err(drawing)?;
+    }
+    Ok(svg)
+}
+
+/// Beam theory at both ends of the modulus range.
+pub fn table(d: &ExperimentData) -> String {
+    let rows: Vec<Vec<String>> = d
+        .mappings
+        .iter()
+        .map(|m| {
+            vec![
+                format!("{:.0} GPa", m.material.youngs_modulus / 1e9),
+                format!("{:.2}", m.f1_theory),
+                format!("{:.0}", m.length_for_measured * 1e3),
+                format!("{:.2}", m.tip_mass_fraction),
+                format!("{:.1}", m.pin_stiffness / 1e3),
+                format!("{:.0}", m.k_ratio),
+                format!("{:.0}", m.k_ratio_effective_length),
+            ]
+        })
+        .collect();
+    markdown_table(
+        &[
+            "$E$",
+            "$f_1$ by beam theory (Hz)",
+            "free length for 5.92 Hz (mm)",
+            "tip mass for 5.92 Hz (× strip's mass)",
+            "pin stiffness (kN/m)",
+            "$k/k_1$",
+            "$k/k_1$ at that free length",
+        ],
+        &rows,
+    )
+}

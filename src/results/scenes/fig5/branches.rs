@@ -1,0 +1,236 @@
+//! Continued branches for Figure 5: every periodic orbit the brute-force diagram finds,
+//! traced in k by [`crate::analysis::continuation`] with its stability and bifurcations.
+//!
+//! Seeds, in a fixed order (so the result does not depend on the thread count): the
+//! Figure 4 orbit (k = 100k₁ from rest, the paper's parameters), then each periodic
+//! attractor of the brute-force diagram (period m ≤ 8) that no traced branch passes
+//! through yet — same m and n, stable, the same largest impact velocity to 1% within
+//! 1.5 grid intervals — up to `branch_seeds` attempts, in order of k and start. A seed
+//! whose shooting does not converge (a slowly settling orbit, or one that converges to an
+//! orbit of a divisor of m) is not retried for the same (m, n) at the next k.
+
+use super::{point_state, Fig5Data, Fig5Params};
+use crate::analysis::continuation::{self, Bifurcation, Branch, Family, Parameter, Settings};
+use crate::error::Error;
+use crate::analysis::orbit::{self, OrbitKind};
+use crate::base::report::{KeyNumbers, Uncertainty};
+use nalgebra::DVector;
+use serde::Serialize;
+
+/// One point of a branch, as drawn.
+#[derive(Debug, Clone, Serialize)]
+pub struct OverlayPoint {
+    /// k/k₁.
+    pub k_over_k1: f64,
+    /// n.
+    pub impacts_n: usize,
+    /// Stable.
+    pub stable: bool,
+    /// The largest multiplier modulus.
+    pub spectral_radius: f64,
+    /// Impact velocities / ωA_free, largest first.
+    pub impact_velocities: Vec<f64>,
+}
+
+/// A traced branch.
+#[derive(Debug, Clone, Serialize)]
+pub struct OverlayBranch {
+    /// m.
+    pub period_m: u64,
+    /// The points.
+    pub points: Vec<OverlayPoint>,
+    /// Its bifurcations.
+    pub bifurcations: Vec<Bifurcation>,
+    /// Why it ends.
+    pub end: String,
+}
+
+/// All branches of one truncation.
+#[derive(Debug, Clone, Serialize)]
+pub struct BranchSet {
+    /// N.
+    pub modes: usize,
+    /// The branches.
+    pub branches: Vec<OverlayBranch>,
+    /// Seeds traced (the Fig 4 orbit first).
+    pub seeds: Vec<(f64, OrbitKind)>,
+}
+
+fn family(p: &Fig5Params, modes: usize) -> Family<'static> {
+    // the base value of k is replaced by the family's parameter
+    Family::forced(super::forced(p, modes, 1.0), Parameter::StopStiffness)
+}
+
+fn settings(p: &Fig5Params) -> Settings {
+    Settings {
+        max_step: p.branch_step,
+        initial_step: p.branch_step.min(0.01),
+        ..Settings::new(p.k_over_k1_range)
+    }
+}
+
+fn overlay(b: &Branch, vamp: f64) -> OverlayBranch {
+    OverlayBranch {
+        period_m: b.period_m,
+        points: b
+            .points
+            .iter()
+            .map(|q| {
+                let mut v: Vec<f64> = q.shape.impact_velocities.iter().map(|v| v / vamp).collect();
+                v.sort_by(|a, b| b.total_cmp(a));
+                OverlayPoint {
+                    k_over_k1: q.parameter,
+                    impacts_n: q.impacts_n,
+                    stable: q.stable,
+                    spectral_radius: q.spectral_radius(),
+                    impact_velocities: v,
+                }
+            })
+            .collect(),
+        bifurcations: b.bifurcations.clone(),
+        end: b.end.clone(),
+    }
+}
+
+/// Whether a stable (m, n) orbit with largest impact velocity `v` at k is on a branch.
+fn covered(set: &[OverlayBranch], k: f64, kind: (u64, usize), v: f64, spacing: f64) -> bool {
+    set.iter().filter(|b| b.period_m == kind.0).any(|b| {
+        b.points.iter().any(|q| {
+            (q.k_over_k1 / k).ln().abs() <= 1.5 * spacing
+                && q.stable
+                && q.impacts_n == kind.1
+                && q.impact_velocities
+                    .first()
+                    .is_some_and(|w| (w - v).abs() <= 0.01 * v.abs().max(1e-12))
+        })
+    })
+}
+
+/// The branch set of truncation `modes`, seeded from the brute-force diagram `d`.
+pub fn branch_set(p: &Fig5Params, d: &Fig5Data, modes: usize) -> Result<BranchSet, Error> {
+    let fam = family(p, modes);
+    let s = settings(p);
+    let vamp = d.free_amplitude.1;
+    let mut set = Vec::new();
+    let mut seeds = Vec::new();
+    // the Figure 4 orbit: k = 100k₁ from rest, its period read from the window
+    let k0 = 100f64.clamp(p.k_over_k1_range.0, p.k_over_k1_range.1);
+    let sim = fam.simulator(k0)?;
+    let o = orbit::settle(&sim, &DVector::zeros(2 * modes), p.transient, p.recorded, 0)?;
+    if let OrbitKind::Periodic { m, .. } = o.kind {
+        for b in continuation::trace(&fam, &o.state, k0, m, &s)? {
+            set.push(overlay(&b, vamp));
+        }
+        seeds.push((k0, o.kind));
+    }
+    let Some(g) = d.diagrams.iter().find(|g| g.modes == modes) else {
+        return Ok(BranchSet {
+            modes,
+            branches: set,
+            seeds,
+        });
+    };
+    let spacing = (d.k_over_k1[1] / d.k_over_k1[0]).ln();
+    let mut attempts = 0;
+    // (grid index, m, n) of seeds that did not converge: not retried at the next k
+    let mut failed: Vec<(usize, u64, u64)> = Vec::new();
+    'grid: for (i, col) in g.columns.iter().enumerate() {
+        for (start, r) in col.iter().enumerate() {
+            let OrbitKind::Periodic { m, n } = r.kind else {
+                continue;
+            };
+            let v = r.impact_velocities.iter().fold(0.0f64, |a, &b| a.max(b));
+            if m > 8
+                || failed.iter().any(|&f| f.1 == m && f.2 == n && f.0 + 1 >= i)
+                || covered(&set, d.k_over_k1[i], (m, n as usize), v, spacing)
+            {
+                continue;
+            }
+            if attempts == p.branch_seeds {
+                break 'grid;
+            }
+            attempts += 1;
+            let k = d.k_over_k1[i];
+            let x = point_state(p, modes, i, k, start)?;
+            // a seed that does not converge (a slowly settling orbit) is skipped
+            match continuation::trace(&fam, &x, k, m, &s) {
+                Ok(bs) => {
+                    set.extend(bs.iter().map(|b| overlay(b, vamp)));
+                    seeds.push((k, r.kind));
+                }
+                Err(_) => failed.push((i, m, n)),
+            }
+        }
+    }
+    Ok(BranchSet {
+        modes,
+        branches: set,
+        seeds,
+    })
+}
+
+/// The continued branches' key numbers: per N the bifurcations of its period-1 branches
+/// (text, 3 digits: each lies between two points at most one step apart), and the N = 3
+/// grazings that turn the Figure 4 (1,1) orbit into (1,3), cited with their brackets.
+pub(super) fn key_numbers(k: &mut KeyNumbers, d: &Fig5Data) {
+    use crate::analysis::continuation::BifurcationKind;
+    for set in &d.branches {
+        let mut found: Vec<(f64, String)> = set
+            .branches
+            .iter()
+            .filter(|b| b.period_m == 1)
+            .flat_map(|b| &b.bifurcations)
+            .map(|f| {
+                (
+                    f.parameter,
+                    format!("{} {}", f.kind, crate::base::report::round_sig(f.parameter, 3)),
+                )
+            })
+            .collect();
+        found.sort_by(|a, b| a.0.total_cmp(&b.0));
+        found.dedup_by(|a, b| a.1 == b.1);
+        let list: Vec<String> = found.into_iter().map(|f| f.1).collect();
+        k.text(
+            format!("N={} period-1 bifurcations", set.modes),
+            if list.is_empty() { "none".into() } else { list.join("; ") },
+        );
+        k.integer(format!("N={} continued branches", set.modes), set.branches.len() as i64);
+    }
+    // N = 3: the Figure 4 branch (the first one traced, upwards from k = 100k₁)
+    let Some(three) = d.branches.iter().find(|s| s.modes == 3) else {
+        return;
+    };
+    let Some(up) = three.branches.first() else {
+        return;
+    };
+    for (impacts, name) in [((1, 2), "N=3 grazing to 2 contacts at"), ((2, 3), "N=3 grazing to 3 contacts at")] {
+        match up
+            .bifurcations
+            .iter()
+            .find(|f| f.kind == BifurcationKind::Grazing && f.impacts == impacts)
+        {
+            Some(f) => {
+                let (lo, hi) = (f.between.0.min(f.between.1), f.between.0.max(f.between.1));
+                k.cited(
+                    name,
+                    f.parameter,
+                    4,
+                    Uncertainty::new(
+                        (f.parameter - lo).max(hi - f.parameter),
+                        format!("between adjacent continuation points {lo:.4} and {hi:.4} k₁ (grazing distance interpolated to 0)"),
+                    ),
+                    "k₁",
+                );
+            }
+            None => k.text(name, "not found"),
+        }
+    }
+    k.text(
+        "N=3 bifurcations on the Fig 4 branch up to 1000k1",
+        up.bifurcations
+            .iter()
+            .map(|f| f.kind.to_string())
+            .collect::<Vec<_>>()
+            .join(", "),
+    );
+}

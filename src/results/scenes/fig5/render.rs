@@ -1,0 +1,345 @@
+//! Figure 5: impact velocities on the impact section against k, one panel per N.
+
+use crate::results::render::{
+    cell, dashed_key, draw_legend, drawing, markdown_table, styled_mesh, RenderError,
+    CAPTION_FONT, LABEL_FONT, WIDTH,
+};
+use super::Fig5Data;
+use plotters::prelude::*;
+
+/// The SVG plot: one panel per N, each with its own velocity range. Points repeating on a
+/// periodic orbit are drawn once (to 1e-3 of the panel's range), which keeps the file small
+/// without changing what is seen; the N = 1 panel states its rigid limit (k → ∞).
+pub fn plot(d: &Fig5Data) -> Result<String, RenderError> {
+    let rows = d.diagrams.len().max(1);
+    let mut svg = String::new();
+    {
+        let root =
+            SVGBackend::with_string(&mut svg, (WIDTH, 300 * rows as u32 + LEGEND_HEIGHT))
+                .into_drawing_area();
+        root.fill(&WHITE).map_err(drawing)?;
+        let (top, strip) = root.split_vertically(300 * rows as u32);
+        let panels = top.split_evenly((rows, 1));
+        if !d.branches.is_empty() {
+            branch_legend(&strip, d)?;
+        }
+        let (lo, hi) = d.params.k_over_k1_range;
+        let k2 = crate::model::continuum::modal_stiffness(2).unwrap_or(f64::NAN)
+            / crate::model::galerkin::first_modal_stiffness();
+        let letters = ["(a)", "(b)", "(c)", "(d)", "(e)", "(f)"];
+        for (p, g) in d.diagrams.iter().enumerate() {
+            let vmax = g
+                .columns
+                .iter()
+                .flatten()
+                .flat_map(|s| s.impact_velocities.iter())
+                .fold(0.0_f64, |a, &v| a.max(v))
+                * 1.08;
+            let vmax = vmax.max(1e-9);
+            let mut chart = ChartBuilder::on(&panels[p])
+                .caption(
+                    format!("{} N = {}", letters[p % 6], g.modes),
+                    CAPTION_FONT,
+                )
+                .margin(8)
+                .margin_right(28)
+                .x_label_area_size(44)
+                .y_label_area_size(64)
+                .build_cartesian_2d((lo..hi).log_scale(), 0.0..vmax)
+                .map_err(drawing)?;
+            styled_mesh(&mut chart)
+                .x_desc("k / k₁")
+                .y_desc("impact velocity / (ω · free amplitude)")
+                .x_label_formatter(&|x| format!("{x:.0e}"))
+                .draw()
+                .map_err(drawing)?;
+            let quantum = 1e-3 * vmax;
+            let mut points = Vec::new();
+            for (col, &k) in g.columns.iter().zip(&d.k_over_k1) {
+                let mut seen: Vec<i64> = col
+                    .iter()
+                    .flat_map(|s| s.impact_velocities.iter())
+                    .map(|v| (v / quantum).round() as i64)
+                    .collect();
+                seen.sort_unstable();
+                seen.dedup();
+                points.extend(seen.into_iter().map(|q| (k, q as f64 * quantum)));
+            }
+            chart
+                .draw_series(
+                    points
+                        .into_iter()
+                        .map(|pt| Circle::new(pt, 2, RGBColor(0, 60, 140).mix(0.6).filled())),
+                )
+                .map_err(drawing)?;
+            if let Some(set) = d.branches.iter().find(|b| b.modes == g.modes) {
+                draw_branches(&mut chart, set, (lo, hi), vmax)?;
+            }
+            chart
+                .draw_series(DashedLineSeries::new(
+                    vec![(k2, 0.0), (k2, vmax)],
+                    6,
+                    4,
+                    RGBColor(213, 40, 0).stroke_width(2),
+                ))
+                .map_err(drawing)?
+                .label("k₂")
+                .legend(dashed_key(RGBColor(213, 40, 0).stroke_width(2)));
+            if g.modes == 1 {
+                if let Some(r) = &d.rigid_limit {
+                    chart
+                        .draw_series(std::iter::once(Text::new(
+                            format!("rigid limit (k → ∞): {:.1} ↑", r.impact_velocity),
+                            (hi / 12.0, vmax * 0.93),
+                            LABEL_FONT.into_font().color(&RGBColor(0, 120, 60)),
+                        )))
+                        .map_err(drawing)?;
+                }
+            }
+            draw_legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
+        }
+        root.present().map_err(drawing)?;
+    }
+    Ok(svg)
+}
+
+use crate::analysis::continuation::BifurcationKind as K;
+
+const STABLE: ShapeStyle = ShapeStyle {
+    color: RGBAColor(0, 0, 0, 1.0),
+    filled: false,
+    stroke_width: 2,
+};
+const UNSTABLE: ShapeStyle = ShapeStyle {
+    color: RGBAColor(200, 30, 30, 1.0),
+    filled: false,
+    stroke_width: 2,
+};
+const MARKERS: [(K, &str, RGBColor); 5] = [
+    (K::PeriodDoubling, "period doubling", RGBColor(230, 120, 0)),
+    (K::Fold, "fold", RGBColor(120, 0, 160)),
+    (K::NeimarkSacker, "Neimark–Sacker", RGBColor(200, 0, 120)),
+    (K::Grazing, "grazing", RGBColor(0, 140, 60)),
+    (K::BranchPoint, "branch point", RGBColor(0, 0, 0)),
+];
+
+type Chart<'a, 'b> = ChartContext<
+    'a,
+    SVGBackend<'b>,
+    Cartesian2d<plotters::coord::combinators::LogCoord<f64>, plotters::coord::types::RangedCoordf64>,
+>;
+
+/// The continued branches over the brute-force points: stable solid, unstable dashed, one
+/// line per impact of the period (largest first); bifurcations marked.
+fn draw_branches(
+    chart: &mut Chart,
+    set: &super::branches::BranchSet,
+    (lo, hi): (f64, f64),
+    vmax: f64,
+) -> Result<(), RenderError> {
+    let inside = |k: f64| k >= lo && k <= hi;
+    let (mut stable_runs, mut unstable_runs) = (Vec::new(), Vec::new());
+    for b in &set.branches {
+        let pts: Vec<_> = b.points.iter().filter(|q| inside(q.k_over_k1)).collect();
+        for w in pts.windows(2) {
+            let (a, c) = (w[0], w[1]);
+            if a.impacts_n != c.impacts_n || a.stable != c.stable {
+                continue;
+            }
+            for j in 0..a.impacts_n {
+                let seg = vec![
+                    (a.k_over_k1, a.impact_velocities[j].min(vmax)),
+                    (c.k_over_k1, c.impact_velocities[j].min(vmax)),
+                ];
+                if a.stable {
+                    stable_runs.push(seg);
+                } else {
+                    unstable_runs.push(seg);
+                }
+            }
+        }
+    }
+    for seg in stable_runs {
+        chart
+            .draw_series(LineSeries::new(seg, STABLE))
+            .map_err(drawing)?;
+    }
+    for seg in unstable_runs {
+        chart
+            .draw_series(DashedLineSeries::new(seg, 4, 3, UNSTABLE))
+            .map_err(drawing)?;
+    }
+    let marks: Vec<(K, f64, f64)> = set
+        .branches
+        .iter()
+        .flat_map(|b| {
+            b.bifurcations.iter().filter(|f| inside(f.parameter)).map(|f| {
+                let v = b.points[f.index]
+                    .impact_velocities
+                    .first()
+                    .copied()
+                    .unwrap_or(0.0);
+                (f.kind, f.parameter, v.min(vmax))
+            })
+        })
+        .collect();
+    for (kind, _, color) in MARKERS {
+        let style = color.stroke_width(2);
+        chart
+            .draw_series(
+                marks
+                    .iter()
+                    .filter(|m| m.0 == kind)
+                    .map(|m| TriangleMarker::new((m.1, m.2), 6, style)),
+            )
+            .map_err(drawing)?;
+    }
+    Ok(())
+}
+
+/// Height of the strip under the panels that holds the branches' legend.
+const LEGEND_HEIGHT: u32 = 64;
+
+/// The legend of the branches, in a strip under the panels (inside a panel it would hide
+/// points): line styles and every bifurcation kind found in any panel.
+fn branch_legend(
+    strip: &DrawingArea<SVGBackend, plotters::coord::Shift>,
+    d: &Fig5Data,
+) -> Result<(), RenderError> {
+    let font = LABEL_FONT.into_font();
+    let (mut x, y) = (20i32, 24i32);
+    let entry = |x: &mut i32, label: &str| -> Result<(), RenderError> {
+        strip
+            .draw(&Text::new(label.to_string(), (*x + 34, y - 8), font.clone()))
+            .map_err(drawing)?;
+        *x += 44 + 8 * label.chars().count() as i32;
+        Ok(())
+    };
+    strip
+        .draw(&PathElement::new(vec![(x, y), (x + 26, y)], STABLE))
+        .map_err(drawing)?;
+    entry(&mut x, "continued, stable")?;
+    for i in 0..3 {
+        let x0 = x + 9 * i;
+        strip
+            .draw(&PathElement::new(vec![(x0, y), (x0 + 5, y)], UNSTABLE))
+            .map_err(drawing)?;
+    }
+    entry(&mut x, "continued, unstable")?;
+    for (kind, name, color) in MARKERS {
+        let found = d
+            .branches
+            .iter()
+            .flat_map(|s| &s.branches)
+            .any(|b| b.bifurcations.iter().any(|f| f.kind == kind));
+        if found {
+            strip
+                .draw(&TriangleMarker::new((x + 13, y), 6, color.stroke_width(2)))
+                .map_err(drawing)?;
+            entry(&mut x, name)?;
+        }
+    }
+    Ok(())
+}
+
+/// Where the set of orbits reached changes along k, for each N.
+pub fn transitions_table(d: &Fig5Data) -> String {
+    let mut rows = Vec::new();
+    for (g, (n, ts)) in d.diagrams.iter().zip(&d.transitions) {
+        let first = g
+            .kinds(0)
+            .iter()
+            .map(|k| k.to_string())
+            .collect::<Vec<_>>()
+            .join(" ");
+        rows.push(vec![
+            n.to_string(),
+            format!("start: {first}"),
+            String::new(),
+        ]);
+        for t in ts {
+            let set = |v: &[crate::analysis::orbit::OrbitKind]| {
+                v.iter()
+                    .map(|k| k.to_string())
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            };
+            rows.push(vec![
+                n.to_string(),
+                format!("{} → {}", set(&t.from), set(&t.to)),
+                format!("{}–{}", cell(t.between.0, 3), cell(t.between.1, 3)),
+            ]);
+        }
+    }
+    markdown_table(&["N", "orbits reached (all starts)", "between k/k₁"], &rows)
+}
+
+/// The measured claims.
+pub fn table(d: &Fig5Data) -> String {
+    let c = &d.claims;
+    let opt = |v: Option<f64>| v.map_or("never".to_string(), |k| cell(k, 3));
+    markdown_table(
+        &["claim", "measured"],
+        &[
+            vec![
+                format!(
+                    "every N and start gives (1,1) at k = {} k₁",
+                    cell(d.k_over_k1[0], 2)
+                ),
+                c.all_one_one_at_smallest_k.to_string(),
+            ],
+            vec![
+                "spread of the impact velocity across N there".into(),
+                format!("{:.2}%", 100.0 * c.velocity_spread_at_smallest_k),
+            ],
+            vec![
+                "first k/k₁ with different orbits, N = 10 vs N = 1".into(),
+                opt(c.first_orbit_difference),
+            ],
+            vec![
+                "first k/k₁ with impact velocities > 5% apart, N = 10 vs N = 1".into(),
+                opt(c.first_velocity_difference),
+            ],
+            vec![
+                "fraction of k with the same orbits, N = 3 vs N = 10".into(),
+                format!("{:.0}%", 100.0 * c.n3_n10_agreement),
+            ],
+            vec![
+                "fraction of k with the same orbits, N = 2 vs N = 10".into(),
+                format!("{:.0}%", 100.0 * c.n2_n10_agreement),
+            ],
+            vec![
+                "first k/k₁ where N = 3 from rest reaches the paper's (1,3)".into(),
+                opt(c.n3_one_three_from),
+            ],
+            vec![
+                "k/k₁ range where each N has the paper's Fig 4 orbit among its attractors".into(),
+                match (
+                    c.paper_figure4_set_reachable_at.first(),
+                    c.paper_figure4_set_reachable_at.last(),
+                ) {
+                    (Some(a), Some(b)) => format!(
+                        "{}–{} ({} of {} grid values)",
+                        cell(*a, 3),
+                        cell(*b, 3),
+                        c.paper_figure4_set_reachable_at.len(),
+                        d.k_over_k1.len()
+                    ),
+                    _ => "none".into(),
+                },
+            ],
+            vec![
+                "k/k₁ where all four Fig 4 orbits (from rest) match the paper".into(),
+                if c.paper_figure4_set_at.is_empty() {
+                    "none".into()
+                } else {
+                    c.paper_figure4_set_at
+                        .iter()
+                        .map(|k| cell(*k, 3))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                },
+            ],
+        ],
+    )
+}
