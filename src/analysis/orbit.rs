@@ -11,6 +11,7 @@
 //! When no m ≤ 32 passes, the orbit is reported as not periodic with its best residual —
 //! quasi-periodic, chaotic, or not yet settled — rather than forced into a label.
 
+use crate::engine::map::{PeriodMap, Periods};
 use crate::engine::sim::{Dense, Event, Events, Sample, Simulator, Strobe};
 use crate::error::Error;
 use nalgebra::DVector;
@@ -22,31 +23,109 @@ pub const PERIODIC_TOLERANCE: f64 = 1e-9;
 /// Largest period searched.
 pub const MAX_PERIOD: usize = 32;
 
-/// ‖a − b‖∞ / max(‖a‖∞, ‖b‖∞).
-pub fn relative_residual(a: &DVector<f64>, b: &DVector<f64>) -> f64 {
-    let scale = a.amax().max(b.amax());
-    if scale == 0.0 {
-        0.0
-    } else {
-        (a - b).amax() / scale
-    }
-}
+pub use crate::engine::map::relative_residual;
 
 /// The smallest m ≤ max_m with a relative residual below `tol` between the last strobe
 /// sample and the one m periods earlier, and the best residual seen.
 pub fn detect_period(strobe: &[DVector<f64>], tol: f64, max_m: usize) -> (Option<u64>, f64) {
+    detect_period_by(strobe, tol, max_m, &relative_residual)
+}
+
+/// [`detect_period`] with the model's own distance between states
+/// ([`PeriodMap::residual`]).
+pub fn detect_period_by(
+    strobe: &[DVector<f64>],
+    tol: f64,
+    max_m: usize,
+    residual: &dyn Fn(&DVector<f64>, &DVector<f64>) -> f64,
+) -> (Option<u64>, f64) {
     let Some(last) = strobe.last() else {
         return (None, f64::INFINITY);
     };
     let mut best = f64::INFINITY;
     for m in 1..=max_m.min(strobe.len().saturating_sub(1)) {
-        let r = relative_residual(last, &strobe[strobe.len() - 1 - m]);
+        let r = residual(last, &strobe[strobe.len() - 1 - m]);
         best = best.min(r);
         if r < tol {
             return (Some(m as u64), r);
         }
     }
     (None, best)
+}
+
+/// The (m, n) label of a window: m from its strobe ([`detect_period_by`]), n the entries
+/// into contact of its last m periods; and the best residual.
+pub fn label<M: PeriodMap + ?Sized>(model: &M, window: &Periods) -> (OrbitKind, f64) {
+    let (m, residual) =
+        detect_period_by(&window.strobe, PERIODIC_TOLERANCE, MAX_PERIOD, &|a, b| {
+            model.residual(a, b)
+        });
+    let kind = m.map_or(OrbitKind::NotPeriodic, |m| OrbitKind::Periodic {
+        m,
+        n: window.entries.iter().rev().take(m as usize).sum(),
+    });
+    (kind, residual)
+}
+
+/// An orbit of any model variant after its transient ([`settle_map`]).
+#[derive(Debug, Clone)]
+pub struct Settled {
+    /// Its label.
+    pub kind: OrbitKind,
+    /// The best relative residual of the window's strobe.
+    pub residual: f64,
+    /// The state at the end of the window.
+    pub state: DVector<f64>,
+    /// The cycle at which the window ends.
+    pub cycle: i64,
+    /// What the window recorded (strobe, entries per period, their tip velocities).
+    pub window: Periods,
+}
+
+impl Settled {
+    /// The tip velocities of the entries into contact in the orbit's last period (the whole
+    /// window when it is not periodic).
+    pub fn orbit_entry_velocities(&self) -> &[f64] {
+        let periods = match self.kind {
+            OrbitKind::Periodic { m, .. } => m as usize,
+            OrbitKind::NotPeriodic => self.window.entries.len(),
+        };
+        let count: u64 = self.window.entries.iter().rev().take(periods).sum();
+        let v = &self.window.entry_velocities;
+        &v[v.len() - (count as usize).min(v.len())..]
+    }
+}
+
+/// Runs `transient` periods of `model` from x0 at cycle 0 (recording nothing), then a
+/// `window` of periods strobed, and labels the orbit: the one settle of every model
+/// variant.
+pub fn settle_map<M: PeriodMap + ?Sized>(
+    model: &M,
+    x0: &DVector<f64>,
+    transient: u64,
+    window: u64,
+) -> Result<Settled, Error> {
+    model.check_state("initial state", x0)?;
+    let x = model.advance(x0, 0, transient, false)?.state;
+    window_from(model, &x, transient as i64, window)
+}
+
+/// The labelled window of `model` from x at the start of cycle `cycle`.
+fn window_from<M: PeriodMap + ?Sized>(
+    model: &M,
+    x: &DVector<f64>,
+    cycle: i64,
+    window: u64,
+) -> Result<Settled, Error> {
+    let w = model.advance(x, cycle, window, true)?;
+    let (kind, residual) = label(model, &w);
+    Ok(Settled {
+        kind,
+        residual,
+        state: w.state.clone(),
+        cycle: cycle + window as i64,
+        window: w,
+    })
 }
 
 /// The (m, n) label of an orbit, or its absence.
@@ -139,26 +218,26 @@ pub fn settle(
     Ok(orbit)
 }
 
-/// [`settle`] in chunks: `chunk` more periods at a time until the orbit over the `window`
-/// after them is periodic, or `max_transient` periods have been discarded. Returns the
-/// orbit and the periods discarded before its window (for lightly damped models, whose
+/// [`settle_map`] in chunks: `chunk` more periods at a time until the orbit over the
+/// `window` after them is periodic, or `max_transient` periods have been discarded. Returns
+/// the orbit and the periods discarded before its window (for lightly damped models, whose
 /// transients last thousands of periods, a fixed transient would either waste time or
 /// label an unsettled run).
-pub fn settle_until_periodic(
-    sim: &Simulator,
+pub fn settle_until_periodic<M: PeriodMap + ?Sized>(
+    model: &M,
     x0: &DVector<f64>,
     chunk: u64,
     window: u64,
     max_transient: u64,
-) -> Result<(Orbit, u64), Error> {
+) -> Result<(Settled, u64), Error> {
+    model.check_state("initial state", x0)?;
     let mut x = x0.clone();
     let mut discarded = 0;
     loop {
         // continue from where the last window ended, on the same clock
-        let start = sim.clock_at_cycle(discarded as i64);
-        x = sim.run_from(&x, start, chunk, &mut ())?.state;
+        x = model.advance(&x, discarded as i64, chunk, false)?.state;
         discarded += chunk;
-        let o = settle_from(sim, &x, discarded as i64, window)?;
+        let o = window_from(model, &x, discarded as i64, window)?;
         if o.kind != OrbitKind::NotPeriodic || discarded + window >= max_transient {
             return Ok((o, discarded));
         }
@@ -194,7 +273,7 @@ impl Settling {
 pub fn settle_from_rest(
     problem: &crate::model::problems::Forced,
     settling: &Settling,
-) -> Result<(Simulator, Orbit, u64), Error> {
+) -> Result<(Simulator, Settled, u64), Error> {
     let sim = Simulator::new(problem.model()?)?;
     let n = sim.model().modes();
     let (o, discarded) = settle_until_periodic(
@@ -205,30 +284,6 @@ pub fn settle_from_rest(
         settling.max,
     )?;
     Ok((sim, o, discarded))
-}
-
-/// The window of [`settle`] from state x at the start of cycle `cycle`.
-fn settle_from(sim: &Simulator, x: &DVector<f64>, cycle: i64, window: u64) -> Result<Orbit, Error> {
-    let start = sim.clock_at_cycle(cycle);
-    let (mut events, mut strobe) = (Events::default(), Strobe::default());
-    let state = sim
-        .run_from(x, start, window, &mut (&mut events, &mut strobe))?
-        .state;
-    let (m, residual) = detect_period(&strobe.states(), PERIODIC_TOLERANCE, MAX_PERIOD);
-    let end = start.cycles + window as i64;
-    let mut orbit = Orbit {
-        kind: OrbitKind::NotPeriodic,
-        residual,
-        events: events.events,
-        dense: Vec::new(),
-        window_start: start.cycles,
-        state,
-    };
-    if let Some(m) = m {
-        let n = orbit.entries(end - m as i64, end).count() as u64;
-        orbit.kind = OrbitKind::Periodic { m, n };
-    }
-    Ok(orbit)
 }
 
 /// A settled orbit of the rigid-impact model.
@@ -248,54 +303,27 @@ pub struct RigidOrbit {
     pub cycle: i64,
 }
 
-/// The rigid-impact model's counterpart of [`settle`]: `transient` periods from x0, then
-/// `window` periods strobed one by one, the orbit labelled by the same criterion.
+/// [`settle_map`] for the rigid-impact model, with what its scenes report.
 pub fn settle_rigid(
     model: &crate::engine::rigid::RigidImpact,
     x0: &DVector<f64>,
     transient: u64,
     window: u64,
-) -> RigidOrbit {
-    use crate::engine::sim::Clock;
-    let period = model.sim.period();
-    let mut x = model.run(x0, transient as f64 * period).state;
-    let mut strobe = vec![x.clone()];
-    let mut impacts_per_cycle = Vec::new();
-    let mut impact_velocity = f64::NAN;
-    let mut chatters = 0;
-    for c in 0..window as i64 {
-        let start = transient as i64 + c;
-        let run = model.run_until(
-            &x,
-            Clock::at_cycle(period, start),
-            Clock::at_cycle(period, start + 1),
-        );
-        let impacts = run.impacts();
-        chatters += run
-            .events
-            .iter()
-            .filter(|e| matches!(e, crate::engine::rigid::RigidEvent::Chatter { .. }))
-            .count();
-        if let Some(&(_, v, _)) = impacts.last() {
-            impact_velocity = v;
-        }
-        impacts_per_cycle.push(impacts.len() as u64);
-        x = run.state;
-        strobe.push(x.clone());
-    }
-    let (m, residual) = detect_period(&strobe, PERIODIC_TOLERANCE, MAX_PERIOD);
-    let kind = m.map_or(OrbitKind::NotPeriodic, |m| OrbitKind::Periodic {
-        m,
-        n: impacts_per_cycle.iter().rev().take(m as usize).sum(),
-    });
-    RigidOrbit {
-        kind,
-        residual,
-        impact_velocity,
-        chatters,
-        cycle: (transient + window) as i64,
-        state: x.as_slice().to_vec(),
-    }
+) -> Result<RigidOrbit, Error> {
+    let o = settle_map(model, x0, transient, window)?;
+    Ok(RigidOrbit {
+        kind: o.kind,
+        residual: o.residual,
+        impact_velocity: o
+            .window
+            .entry_velocities
+            .last()
+            .copied()
+            .unwrap_or(f64::NAN),
+        chatters: o.window.chatters as usize,
+        cycle: o.cycle,
+        state: o.state.as_slice().to_vec(),
+    })
 }
 
 /// A deterministic pseudo-random stream (SplitMix64, Steele, Lea & Flood 2014): seeded per

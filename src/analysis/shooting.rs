@@ -28,7 +28,8 @@
 
 use crate::analysis::orbit::relative_residual;
 use crate::engine::flow::eigen_balanced;
-use crate::engine::sim::{Events, Observer, SegmentView, Simulator};
+pub use crate::engine::sim::Monodromy;
+use crate::engine::sim::{Events, Simulator};
 use crate::error::Error;
 use nalgebra::{DMatrix, DVector};
 use num_complex::Complex64;
@@ -39,39 +40,6 @@ pub const TOLERANCE: f64 = 1e-12;
 
 /// Newton iterations allowed.
 pub const MAX_ITERATIONS: usize = 40;
-
-/// Accumulates the monodromy M = Φ_k ⋯ Φ₁ of a run (see the module doc).
-#[derive(Debug, Clone, Default)]
-pub struct Monodromy {
-    /// The product so far (None before the first segment).
-    pub matrix: Option<DMatrix<f64>>,
-}
-
-impl Observer for Monodromy {
-    fn segment(&mut self, seg: &SegmentView) {
-        let phi = segment_jacobian(seg);
-        self.matrix = Some(match self.matrix.take() {
-            None => phi,
-            Some(m) => phi * m,
-        });
-    }
-}
-
-/// Φ(s_end) of one segment: column i is the flow of the homogeneous part from e_i.
-fn segment_jacobian(seg: &SegmentView) -> DMatrix<f64> {
-    let flow = seg.flow();
-    let theta = seg.phase();
-    let dim = seg.modal_coordinates().len();
-    let base = flow.state(&flow.modal(&DVector::zeros(dim), theta), theta, seg.end);
-    let mut phi = DMatrix::zeros(dim, dim);
-    for i in 0..dim {
-        let mut e = DVector::zeros(dim);
-        e[i] = 1.0;
-        let col = flow.state(&flow.modal(&e, theta), theta, seg.end) - &base;
-        phi.set_column(i, &col);
-    }
-    phi
-}
 
 /// P^m(x) from the start of cycle 0, with its monodromy and the entries into contact.
 pub fn map_with_jacobian(

@@ -2,6 +2,7 @@
 
 pub mod dopri5;
 pub mod flow;
+pub mod map;
 pub mod rigid;
 pub mod sim;
 pub mod two_basis;

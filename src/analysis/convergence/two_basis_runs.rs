@@ -3,6 +3,7 @@
 
 use super::PeriodicObservables;
 use crate::analysis::orbit::{self, OrbitKind};
+use crate::engine::map::PeriodMap;
 use crate::engine::sim::Clock;
 use crate::engine::two_basis::{Switch, TwoBasisModel};
 use crate::error::Error;
@@ -61,64 +62,27 @@ pub fn forced_from_rest(
 }
 
 /// The forced run from rest continued until its stroboscopic samples repeat (§5.2's test,
-/// relative to the state, as in [`crate::analysis::orbit`]; samples in different bases never match):
-/// `chunk` periods at a time, a `window` of samples, at most `max` periods in all.
+/// relative to the state; samples in different bases never match): the one settle of
+/// every model ([`orbit::settle_until_periodic`]), `chunk` periods at a time, a `window`
+/// of samples, at most `max` periods in all.
 pub fn settle(
     model: &TwoBasisModel,
     chunk: u64,
     window: u64,
     max: u64,
 ) -> Result<PeriodicObservables, Error> {
-    let n = model.modes();
-    let period = model.period();
-    let (mut state, _) = model.start(&DVector::zeros(2 * n), 0.0);
-    let mut cycle = 0_i64;
-    let clock = |c: i64| Clock::at_cycle(period, c);
-    while (cycle as u64) + window <= max {
-        state = model
-            .run_until(state, clock(cycle), clock(cycle + chunk as i64))?
-            .state;
-        cycle += chunk as i64;
-        // the window: one period at a time, sampling the state at each boundary
-        let mut samples = vec![state.clone()];
-        let mut switches = Vec::new();
-        for _ in 0..window {
-            let run = model.run_until(state, clock(cycle), clock(cycle + 1))?;
-            switches.push(run.switches);
-            state = run.state;
-            samples.push(state.clone());
-            cycle += 1;
-        }
-        let last = &samples[samples.len() - 1];
-        let found = (1..=orbit::MAX_PERIOD.min(window as usize)).find(|&m| {
-            let earlier = &samples[samples.len() - 1 - m];
-            earlier.region == last.region
-                && orbit::relative_residual(&earlier.x, &last.x) < orbit::PERIODIC_TOLERANCE
-        });
-        if let Some(m) = found {
-            let entries: Vec<&Switch> = switches[switches.len() - m..]
-                .iter()
-                .flatten()
-                .filter(|s| s.entering)
-                .collect();
-            return Ok(PeriodicObservables {
-                kind: OrbitKind::Periodic {
-                    m: m as u64,
-                    n: entries.len() as u64,
-                },
-                impact_velocity: entries
-                    .iter()
-                    .map(|s| s.tip_velocity)
-                    .fold(f64::NAN, f64::max),
-                max_tip: None,
-                transient: cycle as u64 - window,
-            });
-        }
-    }
+    let (o, discarded) = orbit::settle_until_periodic(model, &model.rest(), chunk, window, max)?;
+    let periodic = o.kind != OrbitKind::NotPeriodic;
     Ok(PeriodicObservables {
-        kind: OrbitKind::NotPeriodic,
-        impact_velocity: f64::NAN,
+        kind: o.kind,
+        impact_velocity: if periodic {
+            o.orbit_entry_velocities()
+                .iter()
+                .fold(f64::NAN, |a, &b| a.max(b))
+        } else {
+            f64::NAN
+        },
         max_tip: None,
-        transient: cycle as u64,
+        transient: discarded + if periodic { 0 } else { window },
     })
 }

@@ -23,11 +23,13 @@ pub mod clock;
 pub mod crossing;
 pub mod energy;
 pub mod maximum;
+pub mod monodromy;
 pub mod observe;
 pub mod signal;
 
 pub use clock::Clock;
 pub use energy::EnergyBudget;
+pub use monodromy::Monodromy;
 pub use observe::{
     Dense, Energy, Event, EventView, Events, Observer, Sample, SegmentView, Strobe, TipMax,
     TipMaximum,

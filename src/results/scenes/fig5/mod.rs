@@ -210,7 +210,7 @@ fn rigid_limit(p: &Fig5Params, compliant_at_largest_k: f64) -> Result<RigidLimit
         Simulator::new(m)?,
         crate::model::restitution::impulse_response(1, 1.0)?,
     )?;
-    let o = orbit::settle_rigid(&rigid, &DVector::zeros(2), p.transient, p.recorded);
+    let o = orbit::settle_rigid(&rigid, &DVector::zeros(2), p.transient, p.recorded)?;
     Ok(RigidLimit {
         kind: o.kind,
         residual: o.residual,

@@ -170,7 +170,7 @@ fn one_mode(
     let sim = Simulator::new(model)?;
     let period = sim.period();
     let rigid = RigidImpact::new(sim, impulse_response(1, r)?)?;
-    let settled = orbit::settle_rigid(&rigid, &DVector::zeros(2), p.transient, p.window);
+    let settled = orbit::settle_rigid(&rigid, &DVector::zeros(2), p.transient, p.window)?;
     let m = match settled.kind {
         OrbitKind::Periodic { m, .. } => m,
         OrbitKind::NotPeriodic => 1,

@@ -5,7 +5,7 @@ use super::{Count, Fig9Data, Fig9Params, Peak, ScanPoint};
 use crate::error::Error;
 use crate::analysis::harmonics::TipHarmonics;
 use crate::base::numerics::polar;
-use crate::analysis::orbit::{self, Orbit, OrbitKind};
+use crate::analysis::orbit::{self, OrbitKind, Settled};
 use crate::model::problems::{self, Forced};
 use crate::results::scene::Progress;
 use crate::engine::sim::{Dense, Simulator};
@@ -26,14 +26,14 @@ fn forced(p: &Fig9Params, modes: usize, k: f64, omega: f64, gap_over_free: f64) 
 }
 
 /// The orbit after its transient, with the periods discarded.
-fn settle(sim: &Simulator, p: &Fig9Params, max: u64) -> Result<(Orbit, u64), Error> {
+fn settle(sim: &Simulator, p: &Fig9Params, max: u64) -> Result<(Settled, u64), Error> {
     let n = sim.model().modes();
     orbit::settle_until_periodic(sim, &DVector::zeros(2 * n), p.chunk, p.window, max)
 }
 
 /// Counts contact intervals and sampled penetration maxima per forcing period on the
 /// settled orbit.
-fn count_contacts(sim: &Simulator, p: &Fig9Params, max: u64) -> Result<(Count, Orbit, u64), Error> {
+fn count_contacts(sim: &Simulator, p: &Fig9Params, max: u64) -> Result<(Count, Settled, u64), Error> {
     let (o, discarded) = settle(sim, p, max)?;
     let (intervals, maxima) = match o.kind {
         OrbitKind::Periodic { m, n } => {
@@ -63,7 +63,7 @@ fn count_contacts(sim: &Simulator, p: &Fig9Params, max: u64) -> Result<(Count, O
 
 /// The primary reading's simulator, its settled orbit and the periods discarded (the
 /// experiment's scene computes the same orbit through the same library function).
-fn primary_orbit(p: &Fig9Params) -> Result<(Simulator, Orbit, u64), Error> {
+fn primary_orbit(p: &Fig9Params) -> Result<(Simulator, Settled, u64), Error> {
     let settling = orbit::Settling {
         chunk: p.chunk,
         window: p.window,

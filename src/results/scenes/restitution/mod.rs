@@ -115,7 +115,7 @@ fn nordmark(p: &RestitutionParams, omega: f64) -> Result<Nordmark, Error> {
     let free_amplitude = model.free_tip_amplitude();
     let vamp = free_amplitude.1;
     let rigid = RigidImpact::new(Simulator::new(model)?, impulse_response(1, 1.0)?)?;
-    let settled = orbit::settle_rigid(&rigid, &DVector::zeros(2), p.transient, p.window);
+    let settled = orbit::settle_rigid(&rigid, &DVector::zeros(2), p.transient, p.window)?;
     let rigid_velocity = settled.impact_velocity / vamp;
     let mut compliant = Vec::new();
     let mut compliant_residual = Vec::new();
