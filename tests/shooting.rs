@@ -153,3 +153,74 @@ fn impact_section_shooting_finds_the_stroboscopic_orbit_and_its_multipliers() {
         assert_eq!(o.stable, strobe.stable);
     }
 }
+
+#[test]
+fn an_orbit_is_reported_at_its_least_period() {
+    // Figure 4's N = 10 orbit is (1,1); asked for period 2 or 3, Newton converges to the
+    // same orbit, which is reported as (1,1) with the period-1 multipliers (not their
+    // square or cube)
+    let sim = fig4(10);
+    let once = orbit(&sim, 300, 1);
+    for m in [2, 3] {
+        let o = orbit(&sim, 300, m);
+        assert_eq!((o.period_m, o.impacts_n), (1, 1), "asked for m = {m}");
+        let r = (o.spectral_radius() - once.spectral_radius()).abs();
+        assert!(
+            r < 1e-9,
+            "m = {m}: spectral radius {} vs {}",
+            o.spectral_radius(),
+            once.spectral_radius()
+        );
+    }
+    // Figure 4's N = 2 orbit is a genuine (2,4): kept at period 2
+    let o = orbit(&fig4(2), 1000, 2);
+    assert_eq!((o.period_m, o.impacts_n), (2, 4));
+}
+
+#[test]
+fn a_wrong_guess_is_an_error_not_a_panic() {
+    use impacting_cantilever::error::Error;
+    let sim = fig4(3);
+    for (guess, what) in [
+        (DVector::zeros(5), "length"),
+        (DVector::from_element(6, f64::NAN), "finite"),
+    ] {
+        match shooting::shoot(&sim, &guess, 1) {
+            Err(Error::Parameter(p)) => assert!(p.to_string().contains(what), "{p}"),
+            other => panic!("{what}: {other:?}"),
+        }
+    }
+    assert!(matches!(
+        shooting::shoot(&sim, &DVector::zeros(6), 0),
+        Err(Error::Parameter(_))
+    ));
+}
+
+#[test]
+fn every_model_variant_settles_through_one_interface() {
+    use impacting_cantilever::analysis::orbit::{settle_map, OrbitKind};
+    use impacting_cantilever::engine::map::PeriodMap;
+    use impacting_cantilever::engine::rigid::RigidImpact;
+    use impacting_cantilever::engine::two_basis::TwoBasisModel;
+    use impacting_cantilever::model::restitution;
+    // the compliant model, the rigid-impact model (N = 1, Newton's law r = 1: the k → ∞
+    // limit of the compliant N = 1 model) and the two-basis model, Figure 4's parameters
+    let compliant = fig4(1);
+    let rigid = RigidImpact::new(fig4(1), restitution::impulse_response(1, 1.0).unwrap()).unwrap();
+    let two_basis =
+        TwoBasisModel::new(problems::figure4(3).model().unwrap().params().clone()).unwrap();
+    let models: [&dyn PeriodMap; 3] = [&compliant, &rigid, &two_basis];
+    for model in models {
+        let o = settle_map(model, &model.rest(), 1000, 8).unwrap();
+        assert!(
+            matches!(o.kind, OrbitKind::Periodic { m: 1, .. }),
+            "{}: {}",
+            model.name(),
+            o.kind
+        );
+        assert!(o.residual < 1e-9, "{}", model.name());
+    }
+    // shooting needs the map's Jacobian: the two-basis model says it has none
+    let err = shooting::shoot(&two_basis, &two_basis.rest(), 1).unwrap_err();
+    assert!(err.to_string().contains("no Jacobian"), "{err}");
+}

@@ -25,38 +25,17 @@
 //! multipliers — the same as the stroboscopic map's, which the tests check (two
 //! independent formulations of one orbit).
 
-use crate::analysis::shooting::Monodromy;
+use crate::analysis::shooting::{Monodromy, PeriodicOrbit, Section};
+use crate::base::newton::{self, Evaluation};
 use crate::engine::flow::eigen_balanced;
+use crate::engine::map::PeriodMap;
 use crate::engine::sim::{Clock, Events, Simulator};
 use crate::error::Error;
 use crate::model::galerkin::Region;
 use nalgebra::{DMatrix, DVector};
-use serde::Serialize;
 
 /// Relative residual at which Newton stops (as for the stroboscopic map).
 pub const TOLERANCE: f64 = crate::analysis::shooting::TOLERANCE;
-
-/// An orbit found on the impact section.
-#[derive(Debug, Clone, Serialize)]
-pub struct SectionOrbit {
-    /// The state at an entry into contact (on Σ).
-    pub state: Vec<f64>,
-    /// The entry's phase: its time after the start of a forcing period, in [0, T).
-    pub phase_time: f64,
-    /// m: forcing periods per orbit period.
-    pub period_m: u64,
-    /// n: entries into contact per period.
-    pub impacts_n: usize,
-    /// Floquet multipliers as [re, im], largest modulus first (the trivial 0 of the flow
-    /// direction removed).
-    pub multipliers: Vec<[f64; 2]>,
-    /// All multipliers inside the unit circle.
-    pub stable: bool,
-    /// max(‖xₙ − x‖∞/‖x‖∞, |tₙ − t₀ − mT|/T).
-    pub residual: f64,
-    /// Newton iterations taken.
-    pub iterations: usize,
-}
 
 /// The vector field in free flight, [η̇; −Kη − Cη̇ + F(t)] (continuous across Σ).
 fn field(sim: &Simulator, x: &DVector<f64>, t: f64) -> DVector<f64> {
@@ -148,80 +127,78 @@ pub fn shoot(
     start: Clock,
     n: usize,
     max_iterations: usize,
-) -> Result<SectionOrbit, Error> {
+) -> Result<PeriodicOrbit, Error> {
     if n == 0 {
         return Err(Error::Unsupported(
             "an orbit on the impact section has at least one entry into contact".into(),
         ));
     }
+    sim.check_state("shooting guess", x0)?;
     let period = sim.period();
     let dim = x0.len();
-    // the n-th entry of an orbit of period m ≤ 32 (the longest [`crate::analysis::orbit`] labels)
-    // comes within m periods; twice that leaves room for a guess off the orbit
+    // the n-th entry of an orbit of period m ≤ 32 (the longest [`crate::analysis::orbit`]
+    // labels) comes within m periods; twice that leaves room for a guess off the orbit
     let horizon = 64;
-    let mut x = onto_section(sim, x0);
-    let mut t0 = Clock::at_time(period, start.offset);
-    let (mut xn, mut tn, mut jac) = return_map(sim, &x, t0, n, horizon)?;
     let elapsed =
         |a: &Clock, b: &Clock| (b.cycles - a.cycles) as f64 * period + (b.offset - a.offset);
+    // the unknowns: the state on Σ and the entry's time in the period, z = (x, t₀)
+    let x = onto_section(sim, x0);
+    let t0 = Clock::at_time(period, start.offset);
+    let (_, tn, _) = return_map(sim, &x, t0, n, horizon)?;
     let m = (elapsed(&t0, &tn) / period).round().max(1.0);
-    let residual = |x: &DVector<f64>, xn: &DVector<f64>, t0: &Clock, tn: &Clock| {
-        let dx = (xn - x).amax() / x.amax().max(xn.amax());
-        let dt = (elapsed(t0, tn) - m * period).abs() / period;
-        dx.max(dt)
-    };
-    let mut r = residual(&x, &xn, &t0, &tn);
-    let mut iterations = 0;
-    while r > TOLERANCE {
-        if iterations == max_iterations {
-            return Err(Error::Unsupported(format!(
-                "shooting on the impact section did not converge in {max_iterations} Newton steps (residual {r:.1e})"
-            )));
-        }
-        iterations += 1;
+    let evaluate = |z: &DVector<f64>| -> Result<Evaluation<DMatrix<f64>>, Error> {
+        let x = z.rows(0, dim).into_owned();
+        let t0 = Clock::at_time(period, z[dim]);
+        let (xn, tn, jac) = return_map(sim, &x, t0, n, horizon)?;
         let mut g = DVector::zeros(dim + 1);
         g.rows_mut(0, dim).copy_from(&(&xn - &x));
         g[dim] = elapsed(&t0, &tn) - m * period;
-        let dg = &jac - DMatrix::identity(dim + 1, dim + 1);
-        let step = dg.lu().solve(&(-&g)).ok_or_else(|| {
-            Error::Unsupported(
-                "the impact-section Jacobian J − I is singular (a multiplier equals 1)".into(),
-            )
-        })?;
-        let mut lambda = 1.0;
-        loop {
-            let trial_x = onto_section(sim, &(&x + step.rows(0, dim) * lambda));
-            let trial_t = Clock::at_time(period, t0.offset + step[dim] * lambda);
-            match return_map(sim, &trial_x, trial_t, n, horizon) {
-                Ok((x2, t2, j2)) => {
-                    let r2 = residual(&trial_x, &x2, &trial_t, &t2);
-                    if r2 < r || lambda < 1e-6 {
-                        (x, t0, xn, tn, jac, r) = (trial_x, trial_t, x2, t2, j2, r2);
-                        break;
-                    }
-                }
-                // a step too long can lose an entry (a grazing passed): shorten it
-                Err(e) if lambda < 1e-6 => return Err(e),
-                Err(_) => {}
-            }
-            lambda *= 0.5;
-        }
-    }
-    let (values, _) = eigen_balanced(&jac)?;
+        let dx = (&xn - &x).amax() / x.amax().max(xn.amax());
+        let residual = dx.max(g[dim].abs() / period);
+        Ok(Evaluation {
+            g,
+            jacobian: &jac - DMatrix::identity(dim + 1, dim + 1),
+            merit: residual,
+            residual,
+            extra: jac,
+        })
+    };
+    // keep x on Σ and t₀ in [0, T)
+    let project = |z: DVector<f64>| {
+        let mut y = z.clone();
+        y.rows_mut(0, dim)
+            .copy_from(&onto_section(sim, &z.rows(0, dim).into_owned()));
+        y[dim] = Clock::at_time(period, z[dim]).offset;
+        y
+    };
+    let mut z0 = DVector::zeros(dim + 1);
+    z0.rows_mut(0, dim).copy_from(&x);
+    z0[dim] = t0.offset;
+    let done = newton::solve(
+        z0,
+        evaluate,
+        project,
+        TOLERANCE,
+        max_iterations,
+        "shooting on the impact section",
+    )?;
+    let (values, _) = eigen_balanced(&done.at.extra)?;
     let mut values: Vec<_> = values.into_iter().collect();
     values.sort_by(|a, b| b.norm().total_cmp(&a.norm()));
     // the flow direction's eigenvalue 0 (to round-off) is not a multiplier: the smallest
     // is dropped (multipliers of heavily damped modes can be as small, and are then as
     // good as 0 themselves)
     values.pop();
-    Ok(SectionOrbit {
-        state: x.as_slice().to_vec(),
-        phase_time: t0.offset,
+    Ok(PeriodicOrbit {
+        state: done.x.rows(0, dim).iter().copied().collect(),
+        section: Section::Impact {
+            phase_time: done.x[dim],
+        },
         period_m: m as u64,
         impacts_n: n,
         stable: values.iter().all(|z| z.norm() < 1.0),
         multipliers: values.iter().map(|z| [z.re, z.im]).collect(),
-        residual: r,
-        iterations,
+        residual: done.at.residual,
+        iterations: done.iterations,
     })
 }

@@ -26,11 +26,11 @@
 //! Their accuracy is measured, not assumed: the leading multiplier is compared against the
 //! decay rate of a transient started near the orbit (tests).
 
-use crate::analysis::orbit::relative_residual;
+use crate::base::newton::{self, Evaluation};
 use crate::engine::flow::eigen_balanced;
+use crate::engine::map::{relative_residual, PeriodMap};
 pub use crate::engine::sim::Monodromy;
-use crate::engine::sim::{Events, Simulator};
-use crate::error::Error;
+use crate::error::{Error, ParameterError};
 use nalgebra::{DMatrix, DVector};
 use num_complex::Complex64;
 use serde::Serialize;
@@ -41,35 +41,41 @@ pub const TOLERANCE: f64 = 1e-12;
 /// Newton iterations allowed.
 pub const MAX_ITERATIONS: usize = 40;
 
-/// P^m(x) from the start of cycle 0, with its monodromy and the entries into contact.
-pub fn map_with_jacobian(
-    sim: &Simulator,
+/// P^m(x) from the start of cycle 0, with its monodromy and the entries into contact
+/// ([`PeriodMap::map_with_jacobian`]).
+pub fn map_with_jacobian<M: PeriodMap + ?Sized>(
+    model: &M,
     x: &DVector<f64>,
     m: u64,
 ) -> Result<(DVector<f64>, DMatrix<f64>, usize), Error> {
-    let (mut mono, mut events) = (Monodromy::default(), Events::default());
-    let end = sim.run(x, m, &mut (&mut mono, &mut events))?;
-    let entries = events
-        .events
-        .iter()
-        .filter(|e| e.entering && !e.grazing)
-        .count();
-    let dim = x.len();
-    Ok((
-        end.state,
-        mono.matrix.unwrap_or_else(|| DMatrix::identity(dim, dim)),
-        entries,
-    ))
+    let (px, mono, entries) = model.map_with_jacobian(x, m)?;
+    Ok((px, mono, entries as usize))
 }
 
-/// A periodic orbit found by shooting.
+/// Where an orbit's state is taken.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum Section {
+    /// At the start of a forcing period (ωt = 0 mod 2π): the stroboscopic map.
+    Stroboscopic,
+    /// At an entry into contact, d = d₀ with ḋ > 0 ([`crate::analysis::impact_section`]).
+    Impact {
+        /// The entry's time after the start of its forcing period, in [0, T).
+        phase_time: f64,
+    },
+}
+
+/// A periodic orbit found by shooting, of any model with a Jacobian.
 #[derive(Debug, Clone, Serialize)]
 pub struct PeriodicOrbit {
-    /// The state [η; η̇] at the start of a forcing period on the orbit.
+    /// The state [η; η̇] on the orbit, taken on `section`.
     pub state: Vec<f64>,
-    /// m: forcing periods per orbit period.
+    /// Where the state is taken.
+    pub section: Section,
+    /// m: forcing periods per orbit period (the least: an orbit of period d | m found
+    /// while asking for m is reported at d).
     pub period_m: u64,
-    /// n: entries into contact per orbit period.
+    /// n: entries into contact (impacts, for the rigid model) per orbit period.
     pub impacts_n: usize,
     /// Floquet multipliers (eigenvalues of the monodromy) as [re, im], largest modulus
     /// first.
@@ -87,74 +93,122 @@ impl PeriodicOrbit {
     pub fn spectral_radius(&self) -> f64 {
         self.multipliers.first().map_or(0.0, |z| z[0].hypot(z[1]))
     }
+
+    /// The state as a vector.
+    pub fn state_vector(&self) -> DVector<f64> {
+        DVector::from_column_slice(&self.state)
+    }
+
+    /// The multipliers as complex numbers, largest modulus first.
+    pub fn multipliers_complex(&self) -> Vec<Complex64> {
+        self.multipliers
+            .iter()
+            .map(|z| Complex64::new(z[0], z[1]))
+            .collect()
+    }
 }
 
+/// A period d < m is the orbit's least period when P^d(x) returns to x to this relative
+/// distance (Newton on P^m converges to a period-d orbit too when d divides m). An orbit
+/// converged to [`TOLERANCE`] returns to ~1e-12; the distinct strobe points of a genuine
+/// period-m orbit are O(1) of its size apart (≥ 1.3e-2 over the whole atlas), so 1e-6
+/// separates the two with six decades on either side.
+pub const LEAST_PERIOD: f64 = 1e-6;
+
 /// Newton shooting for a period-m orbit from the guess `x0` (a state at the start of a
-/// forcing period). Fails with [`Error::Unsupported`] when Newton does not reach
-/// [`TOLERANCE`] in [`MAX_ITERATIONS`] (a guess outside the orbit's basin of convergence,
-/// or a period m that does not exist there), saying how close it came.
-pub fn shoot(sim: &Simulator, x0: &DVector<f64>, m: u64) -> Result<PeriodicOrbit, Error> {
-    shoot_within(sim, x0, m, MAX_ITERATIONS)
+/// forcing period), reported at its least period. Fails with [`Error::Unsupported`] when
+/// Newton does not reach [`TOLERANCE`] in [`MAX_ITERATIONS`] (a guess outside the orbit's
+/// basin of convergence, or a period m that does not exist there), saying how close it
+/// came, and with [`Error::Parameter`] for a guess of the wrong length or not finite.
+pub fn shoot<M: PeriodMap + ?Sized>(
+    model: &M,
+    x0: &DVector<f64>,
+    m: u64,
+) -> Result<PeriodicOrbit, Error> {
+    shoot_within(model, x0, m, MAX_ITERATIONS)
 }
 
 /// [`shoot`] with at most `max_iterations` Newton steps (a sweep that tries many guesses
 /// gives up early on those that do not converge fast: from a guess near the orbit, Newton
 /// converges quadratically in a few steps).
-pub fn shoot_within(
-    sim: &Simulator,
+pub fn shoot_within<M: PeriodMap + ?Sized>(
+    model: &M,
     x0: &DVector<f64>,
     m: u64,
     max_iterations: usize,
 ) -> Result<PeriodicOrbit, Error> {
-    if m == 0 {
-        return Err(Error::Unsupported(
-            "the orbit period m must be at least 1".into(),
-        ));
+    if !(1..=64).contains(&m) {
+        return Err(ParameterError::new("orbit period m", m, "an integer from 1 to 64").into());
     }
+    model.check_state("shooting guess", x0)?;
+    let orbit = newton(model, x0, m, max_iterations)?;
+    // reduce to the least period: the smallest divisor d of m with P^d(x) = x
+    let x = orbit.state_vector();
+    for d in (1..m).filter(|&d| m.is_multiple_of(d)) {
+        let pd = model.advance(&x, 0, d, false)?.state;
+        if relative_residual(&pd, &x) < LEAST_PERIOD {
+            return newton(model, &x, d, max_iterations);
+        }
+    }
+    Ok(orbit)
+}
+
+/// [`shoot_within`] at exactly period m, without the reduction to the least period: for
+/// continuation along a period-m branch, whose points near a period doubling come close to
+/// the period-m/2 orbit they branch from and must still be computed at m.
+pub fn shoot_at_period<M: PeriodMap + ?Sized>(
+    model: &M,
+    x0: &DVector<f64>,
+    m: u64,
+    max_iterations: usize,
+) -> Result<PeriodicOrbit, Error> {
+    if !(1..=64).contains(&m) {
+        return Err(ParameterError::new("orbit period m", m, "an integer from 1 to 64").into());
+    }
+    model.check_state("shooting guess", x0)?;
+    newton(model, x0, m, max_iterations)
+}
+
+/// Newton on G(x) = P^m(x) − x with DG = M − I (M the monodromy), and the multipliers.
+fn newton<M: PeriodMap + ?Sized>(
+    model: &M,
+    x0: &DVector<f64>,
+    m: u64,
+    max_iterations: usize,
+) -> Result<PeriodicOrbit, Error> {
     let dim = x0.len();
-    let mut x = x0.clone();
-    let (mut px, mut mono, mut n) = map_with_jacobian(sim, &x, m)?;
-    let mut r = relative_residual(&px, &x);
-    let mut iterations = 0;
-    while r > TOLERANCE {
-        if iterations == max_iterations {
-            return Err(Error::Unsupported(format!(
-                "shooting for a period-{m} orbit did not converge in {max_iterations} Newton steps (residual {r:.1e}); start closer to the orbit (more transient periods) or try another m"
-            )));
-        }
-        iterations += 1;
-        let g = &px - &x;
-        let dg = &mono - DMatrix::identity(dim, dim);
-        let step = dg.lu().solve(&(-&g)).ok_or_else(|| {
-            Error::Unsupported(format!(
-                "the shooting Jacobian M − I is singular at iteration {iterations}: a multiplier equals 1 (a fold or a period-m resonance)"
-            ))
-        })?;
-        let norm = g.amax();
-        let mut lambda = 1.0;
-        loop {
-            let trial = &x + &step * lambda;
-            let (p2, m2, n2) = map_with_jacobian(sim, &trial, m)?;
-            if (&p2 - &trial).amax() < norm || lambda < 1e-6 {
-                x = trial;
-                (px, mono, n) = (p2, m2, n2);
-                break;
-            }
-            lambda *= 0.5;
-        }
-        r = relative_residual(&px, &x);
-    }
+    let evaluate = |x: &DVector<f64>| -> Result<Evaluation<(DMatrix<f64>, u64)>, Error> {
+        let (px, mono, n) = model.map_with_jacobian(x, m)?;
+        let g = &px - x;
+        Ok(Evaluation {
+            merit: g.amax(),
+            residual: relative_residual(&px, x),
+            jacobian: &mono - DMatrix::identity(dim, dim),
+            g,
+            extra: (mono, n),
+        })
+    };
+    let what = format!("shooting for a period-{m} orbit of {}", model.name());
+    let done = newton::solve(
+        x0.clone(),
+        evaluate,
+        |x| x,
+        TOLERANCE,
+        max_iterations,
+        &what,
+    )?;
+    let (mono, n) = done.at.extra;
     let mut multipliers = floquet(&mono)?;
     multipliers.sort_by(|a, b| b.norm().total_cmp(&a.norm()));
-    let stable = multipliers.iter().all(|z| z.norm() < 1.0);
     Ok(PeriodicOrbit {
-        state: x.as_slice().to_vec(),
+        state: done.x.as_slice().to_vec(),
+        section: Section::Stroboscopic,
         period_m: m,
-        impacts_n: n,
+        impacts_n: n as usize,
+        stable: multipliers.iter().all(|z| z.norm() < 1.0),
         multipliers: multipliers.iter().map(|z| [z.re, z.im]).collect(),
-        stable,
-        residual: r,
-        iterations,
+        residual: done.at.residual,
+        iterations: done.iterations,
     })
 }
 

@@ -21,13 +21,6 @@ const SAME_ORBIT: f64 = 1e-6;
 /// a period-8 guess costs 8 periods or more.
 const NEWTON_STEPS: usize = 12;
 
-/// A period d < m is the least period when P^d(x) returns to x to this relative distance
-/// (Newton on P^m converges to a period-d orbit too when d divides m). A period-d orbit
-/// converged to 1e-12 returns to ~1e-12; a genuine period-m orbit's strobe points are
-/// distinct orbits' worth apart (≥ 1.3e-2, as for [`SAME_ORBIT`]), so 1e-6 separates them
-/// with six decades on either side.
-const LEAST_PERIOD: f64 = 1e-6;
-
 /// Before the last third of a transient, Newton is tried only from a start this close to
 /// a period-m orbit (its strobe residual): a start so close has almost surely entered the
 /// orbit's basin rather than passing near it (the tests confirm every orbit from rest by a
@@ -157,34 +150,15 @@ impl CellSearch<'_> {
         Ok(None)
     }
 
-    /// Shooting from a guess: the orbit if Newton converges to a stable one (reduced to
-    /// its least period), else None.
+    /// Shooting from a guess: the orbit (at its least period, [`shooting::shoot_within`])
+    /// if Newton converges to a stable one, else None.
     fn converge(&self, guess: &DVector<f64>, m: u64) -> Result<Option<PeriodicOrbit>, Error> {
-        let orbit = match shooting::shoot_within(self.sim, guess, m, NEWTON_STEPS) {
-            Ok(o) => o,
+        match shooting::shoot_within(self.sim, guess, m, NEWTON_STEPS) {
+            Ok(o) => Ok(Some(o).filter(|o| o.stable)),
             // Newton did not converge (a guess outside its basin, a multiplier at 1)
-            Err(Error::Unsupported(_)) => return Ok(None),
-            Err(e) => return Err(e),
-        };
-        let orbit = self.least_period(orbit)?;
-        Ok(orbit.filter(|o| o.stable))
-    }
-
-    /// The orbit at its least period d | m.
-    fn least_period(&self, orbit: PeriodicOrbit) -> Result<Option<PeriodicOrbit>, Error> {
-        let m = orbit.period_m;
-        let x = DVector::from_column_slice(&orbit.state);
-        for d in (1..m).filter(|&d| m.is_multiple_of(d)) {
-            let pd = self.sim.run(&x, d, &mut ())?.state;
-            if relative_residual(&pd, &x) < LEAST_PERIOD {
-                return match shooting::shoot_within(self.sim, &x, d, NEWTON_STEPS) {
-                    Ok(o) => Ok(Some(o)),
-                    Err(Error::Unsupported(_)) => Ok(None),
-                    Err(e) => Err(e),
-                };
-            }
+            Err(Error::Unsupported(_)) => Ok(None),
+            Err(e) => Err(e),
         }
-        Ok(Some(orbit))
     }
 
     /// Starts `range` (beyond the cell's own) as a check of completeness: how many stable

@@ -332,7 +332,7 @@ fn polish(
     tangent_u: f64,
 ) -> Result<Option<BranchPoint>, Error> {
     let sim = family.simulator(u.exp())?;
-    let Ok(orbit) = shooting::shoot(&sim, x, m) else {
+    let Ok(orbit) = shooting::shoot_at_period(&sim, x, m, shooting::MAX_ITERATIONS) else {
         return Ok(None);
     };
     let mut obs = ShapeObserver::new(&sim);
@@ -365,16 +365,13 @@ pub fn continue_branch(
     let sim0 = family.simulator(p0)?;
     let start = shooting::shoot(&sim0, x0, m)?;
     let x = DVector::from_vec(start.state.clone());
-    // the orbit's least period: Newton may have converged to an orbit of a divisor of m
-    // (distinct points of a period-m orbit differ by O(1) of its size; the orbit itself is
-    // converged to 1e-12, so 1e-6 separates the two cases with room on both sides)
-    for q in (1..m).filter(|q| m.is_multiple_of(*q)) {
-        let px = sim0.run(&x, q, &mut ())?.state;
-        if relative_residual(&px, &x) < 1e-6 {
-            return Err(Error::Unsupported(format!(
-                "shooting for period {m} at p = {p0} converged to an orbit of period {q}"
-            )));
-        }
+    // shooting reports the least period: Newton may have converged to an orbit of a
+    // divisor of m, which is not the branch asked for
+    if start.period_m != m {
+        return Err(Error::Unsupported(format!(
+            "shooting for period {m} at p = {p0} converged to an orbit of period {}",
+            start.period_m
+        )));
     }
     let sc = Scaled::new(&x, sim0.model().free_tip_amplitude());
     let d = x.len();

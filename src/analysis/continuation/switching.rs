@@ -102,7 +102,8 @@ fn switch_at_doubling(
                 .collect()
         };
         for guess in guesses {
-            let Ok(o) = shooting::shoot(&sim, &guess, m2) else {
+            let Ok(o) = shooting::shoot_at_period(&sim, &guess, m2, shooting::MAX_ITERATIONS)
+            else {
                 continue;
             };
             let xo = DVector::from_vec(o.state.clone());
