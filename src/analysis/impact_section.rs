@@ -39,14 +39,7 @@ pub const TOLERANCE: f64 = crate::analysis::shooting::TOLERANCE;
 
 /// The vector field in free flight, [η̇; −Kη − Cη̇ + F(t)] (continuous across Σ).
 fn field(sim: &Simulator, x: &DVector<f64>, t: f64) -> DVector<f64> {
-    let model = sim.model();
-    let n = model.modes();
-    let mut f = model.state_matrix(Region::Free) * x;
-    let force = model.force(t, Region::Free);
-    for j in 0..n {
-        f[n + j] += force[j];
-    }
-    f
+    sim.model().vector_field(x, t, Region::Free)
 }
 
 /// x with its displacement moved along φ(1) onto Σ.

@@ -244,6 +244,13 @@ impl PeriodMap for RigidImpact {
         }
         Ok(out)
     }
+    fn map_with_jacobian(
+        &self,
+        x: &DVector<f64>,
+        m: u64,
+    ) -> Result<(DVector<f64>, DMatrix<f64>, u64), Error> {
+        RigidImpact::map_with_jacobian(self, x, m)
+    }
 }
 
 /// The two-basis model's state as one vector: the modal state in the basis of its region,

@@ -415,6 +415,18 @@ impl GalerkinModel {
         &self.forcing_amplitude * (omega * t).cos() + self.stop_preload(region)
     }
 
+    /// The vector field of `region` at state x = [η; η̇] and time t: ẋ = A^±x + [0; F^±(t)]
+    /// (eqs 34–35).
+    pub fn vector_field(&self, x: &DVector<f64>, t: f64, region: Region) -> DVector<f64> {
+        let n = self.modes();
+        let mut f = self.state_matrix(region) * x;
+        let force = self.force(t, region);
+        for j in 0..n {
+            f[n + j] += force[j];
+        }
+        f
+    }
+
     /// The switching function φ(1)ᵀη − d₀: negative in free flight, positive in contact.
     pub fn switching_function(&self, eta: &DVector<f64>) -> f64 {
         self.tip.dot(eta) - self.params.gap

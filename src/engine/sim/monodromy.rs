@@ -24,15 +24,19 @@ impl Observer for Monodromy {
 
 /// Φ(s_end) of one segment: column i is the flow of the homogeneous part from e_i.
 fn segment_jacobian(seg: &SegmentView) -> DMatrix<f64> {
-    let flow = seg.flow();
-    let theta = seg.phase();
-    let dim = seg.modal_coordinates().len();
-    let base = flow.state(&flow.modal(&DVector::zeros(dim), theta), theta, seg.end);
+    flow_jacobian(seg.flow(), seg.phase(), seg.end)
+}
+
+/// Φ(s) = e^{As} of a region's flow (the forcing does not enter a Jacobian): column i is
+/// the flow from e_i less the flow from 0, evaluated in closed form.
+pub fn flow_jacobian(flow: &crate::engine::flow::RegionFlow, theta: f64, s: f64) -> DMatrix<f64> {
+    let dim = 2 * flow.modes();
+    let base = flow.state(&flow.modal(&DVector::zeros(dim), theta), theta, s);
     let mut phi = DMatrix::zeros(dim, dim);
     for i in 0..dim {
         let mut e = DVector::zeros(dim);
         e[i] = 1.0;
-        let col = flow.state(&flow.modal(&e, theta), theta, seg.end) - &base;
+        let col = flow.state(&flow.modal(&e, theta), theta, s) - &base;
         phi.set_column(i, &col);
     }
     phi
