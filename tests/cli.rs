@@ -397,6 +397,65 @@ fn orbit_returns_the_figure_4_orbit_with_its_multipliers() {
 }
 
 #[test]
+fn orbit_reports_the_least_period_and_shoots_the_rigid_model() {
+    // asked for period 2, Figure 4's (1,1) orbit is reported as (1,1) with its own
+    // multipliers (0.545, not their square)
+    let fig4 = [
+        "orbit",
+        "--modes",
+        "10",
+        "--stop-stiffness",
+        "100",
+        "--zeta1",
+        "0.01",
+        "--omega",
+        "2",
+        "--periods",
+        "300",
+        "--json",
+    ];
+    let (code, out, err) = cantilever(&[&fig4[..], &["--period", "2"]].concat());
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(
+        (v["period_m"].as_u64(), v["impacts_n"].as_u64()),
+        (Some(1), Some(1))
+    );
+    let mu = &v["multipliers"][0];
+    let radius = mu[0].as_f64().unwrap().hypot(mu[1].as_f64().unwrap());
+    assert!((radius - 0.5452).abs() < 1e-3, "{radius}");
+    // the rigid model with Newton's law: an orbit with multipliers, its law in the output
+    let (code, out, err) = cantilever(&[
+        "orbit",
+        "--model",
+        "rigid",
+        "--law",
+        "newton",
+        "--restitution",
+        "0.8",
+        "--modes",
+        "1",
+        "--zeta1",
+        "0.01",
+        "--omega",
+        "2",
+        "--periods",
+        "500",
+        "--json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["model"], "rigid");
+    assert_eq!(v["law"], "newton");
+    assert_eq!(
+        (v["period_m"].as_u64(), v["impacts_n"].as_u64()),
+        (Some(1), Some(1))
+    );
+    assert_eq!(v["multipliers"].as_array().unwrap().len(), 2);
+    assert_eq!(v["stable"], true);
+}
+
+#[test]
 fn continue_traces_the_n3_branch_through_its_grazings() {
     let fig4 = [
         "continue",

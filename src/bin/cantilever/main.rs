@@ -122,14 +122,18 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
-    /// One periodic orbit of the compliant model by Newton shooting on the stroboscopic
-    /// map with the exact monodromy, and its Floquet multipliers. The model and start are
-    /// those of `simulate`; the transient (--periods) brings the start near the orbit.
+    /// One periodic orbit by Newton shooting on the stroboscopic map with the exact
+    /// monodromy, and its Floquet multipliers: of the compliant model, or of the
+    /// rigid-impact model with its law (--model rigid --law …; the saltation matrix at each
+    /// impact; an orbit that chatters or sticks is refused). The model and start are those
+    /// of `simulate`; the transient (--periods) brings the start near the orbit. The orbit
+    /// is reported at its least period.
     ///
-    /// Output fields (--json): period_m, impacts_n (entries into contact per period),
-    /// state ([η; η̇] at the start of a forcing period on the orbit), multipliers (the
-    /// monodromy's eigenvalues as [re, im], largest modulus first), stable (all |μ| < 1),
-    /// residual (‖P^m(x) − x‖∞/‖x‖∞, ≤ 1e-12), iterations, and the parameters.
+    /// Output fields (--json): period_m, impacts_n (entries into contact, or impacts, per
+    /// period), state ([η; η̇] at the start of a forcing period on the orbit), section,
+    /// multipliers (the monodromy's eigenvalues as [re, im], largest modulus first), stable
+    /// (all |μ| < 1), residual (‖P^m(x) − x‖∞/‖x‖∞, ≤ 1e-12), iterations, and the
+    /// parameters (model, law, restitution for the rigid model).
     Orbit {
         #[command(flatten)]
         args: orbit::OrbitArgs,

@@ -1,11 +1,15 @@
-//! `cantilever orbit`: one periodic orbit of the compliant model by Newton shooting, with
-//! its Floquet multipliers ([`impacting_cantilever::analysis::shooting`]).
+//! `cantilever orbit`: one periodic orbit of the compliant model, or of the rigid-impact
+//! model with its law, by Newton shooting, with its Floquet multipliers
+//! ([`impacting_cantilever::analysis::shooting`]).
 
-use crate::simulate::{self, ModelKind};
-use impacting_cantilever::analysis::orbit::detect_period;
+use crate::simulate::{self, Law, ModelKind};
+use impacting_cantilever::analysis::orbit::detect_period_by;
 use impacting_cantilever::analysis::shooting::{self, PeriodicOrbit};
-use impacting_cantilever::engine::sim::{Simulator, Strobe};
+use impacting_cantilever::engine::map::PeriodMap;
+use impacting_cantilever::engine::rigid::RigidImpact;
+use impacting_cantilever::engine::sim::Simulator;
 use impacting_cantilever::error::{Error, ParameterError};
+use nalgebra::DVector;
 
 /// The command's inputs: the model and start of `simulate`, and the orbit's period.
 #[derive(Debug, Clone, clap::Args)]
@@ -27,6 +31,12 @@ pub struct Report {
     pub orbit: PeriodicOrbit,
     /// Where the Newton iteration started.
     pub start: String,
+    /// The model: compliant or rigid.
+    pub model: ModelKind,
+    /// The rigid model's law (null for the compliant model).
+    pub law: Option<Law>,
+    /// The rigid model's restitution coefficient (null for the compliant model).
+    pub restitution: Option<f64>,
     /// The parameters, as given.
     pub modes: usize,
     /// k/k₁.
@@ -39,17 +49,9 @@ pub struct Report {
     pub gap: f64,
 }
 
-/// Finds the orbit.
+/// Finds the orbit, of the compliant model or of the rigid-impact model with its law.
 pub fn run(args: &OrbitArgs) -> Result<Report, Error> {
     let a = &args.model;
-    if a.model == ModelKind::Rigid {
-        return Err(ParameterError::new(
-            "--model",
-            "rigid",
-            "compliant (shooting uses the compliant model's exact monodromy)",
-        )
-        .into());
-    }
     if let Some(m) = args.period {
         if !(1..=64).contains(&m) {
             return Err(ParameterError::new("--period", m, "an integer from 1 to 64").into());
@@ -57,28 +59,16 @@ pub fn run(args: &OrbitArgs) -> Result<Report, Error> {
     }
     let setup = simulate::setup(a)?;
     let sim = Simulator::new(setup.model)?;
-    let x = sim.run(&setup.x0, a.periods, &mut ())?.state;
-    let (x, m) = match args.period {
-        Some(m) => (x, m),
-        None => {
-            // read m from the window: the smallest period whose samples nearly repeat
-            let mut strobe = Strobe::default();
-            let start = sim.clock_at_cycle(a.periods as i64);
-            let window = a.record.max(2);
-            let end = sim.run_from(&x, start, window, &mut strobe)?.state;
-            let (m, residual) = detect_period(&strobe.states(), 1e-3, 64.min(window as usize - 1));
-            let m = m.ok_or_else(|| {
-                Error::Unsupported(format!(
-                    "no period m ≤ 64 in the recorded window (best relative residual {residual:.1e}): give --period, or more --periods of transient"
-                ))
-            })?;
-            (end, m)
-        }
+    let orbit = match (a.model, setup.law) {
+        (ModelKind::Rigid, Some(law)) => find(&RigidImpact::new(sim, law)?, &setup.x0, args)?,
+        _ => find(&sim, &setup.x0, args)?,
     };
-    let orbit = shooting::shoot(&sim, &x, m)?;
     Ok(Report {
         orbit,
         start: format!("{} after {} transient periods", setup.start, a.periods),
+        model: a.model,
+        law: (a.model == ModelKind::Rigid).then_some(a.law),
+        restitution: (a.model == ModelKind::Rigid).then_some(a.restitution),
         modes: a.modes,
         k_over_k1: a.stop_stiffness,
         omega_over_w1: a.omega,
@@ -87,15 +77,54 @@ pub fn run(args: &OrbitArgs) -> Result<Report, Error> {
     })
 }
 
+/// The transient, the period (given, or read from the window: the smallest whose strobe
+/// samples nearly repeat) and the orbit by shooting, for any model with a Jacobian.
+fn find<M: PeriodMap>(
+    model: &M,
+    x0: &DVector<f64>,
+    args: &OrbitArgs,
+) -> Result<PeriodicOrbit, Error> {
+    let a = &args.model;
+    let x = model.advance(x0, 0, a.periods, false)?.state;
+    let (x, m) = match args.period {
+        Some(m) => (x, m),
+        None => {
+            let window = a.record.max(2);
+            let w = model.advance(&x, a.periods as i64, window, true)?;
+            let (m, residual) =
+                detect_period_by(&w.strobe, 1e-3, 64.min(window as usize - 1), &|p, q| {
+                    model.residual(p, q)
+                });
+            let m = m.ok_or_else(|| {
+                Error::Unsupported(format!(
+                    "no period m ≤ 64 in the recorded window (best relative residual {residual:.1e}): give --period, or more --periods of transient"
+                ))
+            })?;
+            (w.state, m)
+        }
+    };
+    shooting::shoot(model, &x, m)
+}
+
 /// Plain-text summary.
 pub fn to_text(r: &Report) -> String {
     let o = &r.orbit;
+    let model = match (r.law, r.restitution) {
+        (Some(law), Some(e)) => {
+            use clap::ValueEnum;
+            let name = law
+                .to_possible_value()
+                .map(|v| v.get_name().to_string())
+                .unwrap_or_default();
+            format!("rigid-impact, {name} law, r = {e}")
+        }
+        _ => format!("compliant, k = {}k₁", r.k_over_k1),
+    };
     let mut s = format!(
-        "({}, {}) orbit, N = {}, k = {}k₁, ω = {}(β₁⁻)²: {} (spectral radius {:.6}), residual {:.1e} after {} Newton steps\nmultipliers (largest first):\n",
+        "({}, {}) orbit, N = {}, {model}, ω = {}(β₁⁻)²: {} (spectral radius {:.6}), residual {:.1e} after {} Newton steps\nmultipliers (largest first):\n",
         o.period_m,
         o.impacts_n,
         r.modes,
-        r.k_over_k1,
         r.omega_over_w1,
         if o.stable { "stable" } else { "unstable" },
         o.spectral_radius(),
