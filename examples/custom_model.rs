@@ -6,7 +6,7 @@
 
 use impacting_cantilever::prelude::*;
 
-fn main() -> Result<(), Error> {
+pub fn main() -> Result<(), Error> {
     let forcing = Forcing::from_fn(1.3 * first_frequency(), |s| 40.0 * s * s);
     let params = GalerkinParams::new(8, 500.0 * first_modal_stiffness())
         .with_gap(0.3)

@@ -7,7 +7,7 @@
 
 use impacting_cantilever::prelude::*;
 
-fn main() -> Result<(), Error> {
+pub fn main() -> Result<(), Error> {
     let case = Forced {
         gap: 0.5,
         omega_over_w1: 1.0,
@@ -17,7 +17,7 @@ fn main() -> Result<(), Error> {
     let periods = 30.0;
     let t_end = periods * sim.period();
     let law = restitution::impulse_response(3, 0.8)?;
-    let run = RigidImpact::new(sim, law)?.run(&DVector::zeros(6), t_end);
+    let run = RigidImpact::new(sim, law)?.run(&DVector::zeros(6), t_end)?;
     let impacts = run.impacts();
     for (t, vin, vout) in impacts.iter().rev().take(4).rev() {
         println!("t = {t:10.6}: tip velocity {vin:+.5} → {vout:+.5}");

@@ -46,12 +46,17 @@ pub mod results;
 
 /// The names a program using the library needs, in one `use`.
 pub mod prelude {
-    pub use crate::analysis::orbit::{settle, OrbitKind};
+    pub use crate::analysis::energetic::{orbit_coefficient, ContactWork};
+    pub use crate::analysis::find_orbit::{find_orbit, FoundOrbit, OrbitOptions};
+    pub use crate::analysis::orbit::{settle, settle_map, OrbitKind, Settled};
+    pub use crate::analysis::shooting::{shoot, PeriodicOrbit};
+    pub use crate::engine::map::PeriodMap;
     pub use crate::engine::rigid::{RigidEvent, RigidImpact, RigidRun};
     pub use crate::engine::sim::{
         Clock, Dense, Energy, EventView, Events, Observer, SegmentView, Settings, Simulator,
         Strobe, TipMax,
     };
+    pub use crate::engine::two_basis::TwoBasisModel;
     pub use crate::error::{Error, ParameterError};
     pub use crate::model::galerkin::{
         first_frequency, first_modal_stiffness, Forcing, GalerkinModel, GalerkinParams, Region,
@@ -60,4 +65,5 @@ pub mod prelude {
     pub use crate::model::problems::{self, Forced};
     pub use crate::model::restitution;
     pub use nalgebra::{DMatrix, DVector};
+    pub use num_complex::Complex64;
 }

@@ -48,7 +48,7 @@ fn the_exact_work_integral_agrees_with_quadrature_of_the_contact_force() {
     let sim = Simulator::new(problems::figure6b(10).model().unwrap()).unwrap();
     let x = settled(&sim, 200);
     let start = sim.clock_at_cycle(200);
-    let mut exact = ContactWork::for_mode(0);
+    let mut exact = ContactWork::for_mode(sim.model(), 0).unwrap();
     // the stop mode oscillates at √(λ_N) ≈ √(kN) per unit time; a contact segment is at
     // most a period T = 2π/ω long, so 2000 panels of 20 points resolve it many times over
     let fine = |panels| Quadratured {
@@ -107,7 +107,11 @@ fn the_contact_force_only_moves_energy_between_modes() {
     let x = settled(&sim, 200);
     let start = sim.clock_at_cycle(200);
     // start and end outside contact so that every contact is whole
-    let mut per_mode: Vec<ContactWork> = (0..n).map(ContactWork::for_mode).collect();
+    let mut per_mode: Vec<ContactWork> = (0..n)
+        .map(|j| ContactWork::for_mode(sim.model(), j).unwrap())
+        .collect();
+    // a mode the model does not have is bad input, not a panic later
+    assert!(ContactWork::for_mode(sim.model(), n).is_err());
     {
         let mut observers: Vec<&mut dyn Observer> = per_mode
             .iter_mut()

@@ -20,7 +20,7 @@
 use crate::analysis::orbit::{self, OrbitKind};
 use crate::engine::sim::energy::{segment_energy, EnergyTables};
 use crate::engine::sim::{Clock, EventView, Observer, SegmentView, Simulator};
-use crate::error::Error;
+use crate::error::{Error, ParameterError};
 use crate::model::galerkin::{GalerkinModel, Region};
 use nalgebra::DVector;
 use serde::Serialize;
@@ -106,12 +106,19 @@ pub struct ContactWork {
 }
 
 impl ContactWork {
-    /// Observes mode j (0-based).
-    pub fn for_mode(mode: usize) -> Self {
-        Self {
+    /// Observes mode j (0-based) of `model`; a mode the model does not have is bad input.
+    pub fn for_mode(model: &GalerkinModel, mode: usize) -> Result<Self, ParameterError> {
+        if mode >= model.modes() {
+            return Err(ParameterError::new(
+                "mode j (0-based)",
+                mode,
+                &format!("a mode of the model, 0 to {}", model.modes() - 1),
+            ));
+        }
+        Ok(Self {
             mode,
             ..Self::default()
-        }
+        })
     }
 
     /// Eq (39) over the observed run (one period of a periodic orbit).
@@ -233,7 +240,7 @@ pub fn orbit_coefficient(
         cycle,
     };
     if let OrbitKind::Periodic { m, .. } = settled.kind {
-        let mut work = ContactWork::for_mode(0);
+        let mut work = ContactWork::for_mode(sim.model(), 0)?;
         sim.run_from(&settled.state, sim.clock_at_cycle(cycle), m, &mut work)?;
         result.coefficient = Some(work.coefficient());
         result.energy_change_coefficient = Some(work.energy_change_coefficient());

@@ -4,6 +4,7 @@ pub mod atlas;
 pub mod continuation;
 pub mod convergence;
 pub mod energetic;
+pub mod find_orbit;
 pub mod harmonics;
 pub mod impact_section;
 pub mod orbit;

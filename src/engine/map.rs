@@ -207,7 +207,7 @@ impl PeriodMap for RigidImpact {
                 &out.state,
                 Clock::at_cycle(period, a),
                 Clock::at_cycle(period, b),
-            );
+            )?;
             match run.outcome {
                 Outcome::Completed => {}
                 Outcome::Chatter(t) => {

@@ -350,15 +350,38 @@ impl GalerkinModel {
     /// paper's unit of displacement (1 at ω = (β₁⁻)² with the corrected eq (37)).
     pub fn free_tip_amplitude(&self) -> (f64, f64) {
         let omega = self.omega();
-        let amp: f64 = (0..self.modes())
+        // the modes' responses add as phasors: a mode forced above its resonance moves
+        // against one forced below it
+        let amp = (0..self.modes())
             .map(|j| {
-                let re = self.modal_stiffness[j] - omega * omega;
-                let im = self.damping[j] * omega;
-                self.tip[j] * self.forcing_amplitude[j] / (re * re + im * im).sqrt()
+                let denominator = num_complex::Complex64::new(
+                    self.modal_stiffness[j] - omega * omega,
+                    self.damping[j] * omega,
+                );
+                self.tip[j] * self.forcing_amplitude[j] / denominator
             })
-            .sum::<f64>()
-            .abs();
+            .sum::<num_complex::Complex64>()
+            .norm();
         (amp, amp * omega)
+    }
+
+    /// The same model with its gap d₀ set to `gap_over_free` times A_free(ω), the free tip
+    /// amplitude at the forcing frequency ([`Self::free_tip_amplitude`]): a gap chosen as a
+    /// fraction of the motion actually forced is reached at any ω (< 1 means contact).
+    pub fn with_gap_over_free(&self, gap_over_free: f64) -> Result<Self, ParameterError> {
+        error::finite("gap d₀/A_free", gap_over_free)?;
+        let a_free = self.free_tip_amplitude().0;
+        if a_free == 0.0 {
+            return Err(ParameterError::new(
+                "gap d₀/A_free",
+                gap_over_free,
+                "a model with forcing (A_free is 0 without it)",
+            ));
+        }
+        let mut m = self.clone();
+        m.params.gap = gap_over_free * a_free;
+        error::finite("gap d₀", m.params.gap)?;
+        Ok(m)
     }
 
     /// The modal state x = [η; η̇] of a beam with displacement w(s) and velocity w_t(s):

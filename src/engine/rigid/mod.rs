@@ -21,7 +21,7 @@
 pub mod sticking;
 
 use crate::engine::sim::monodromy::flow_jacobian;
-use crate::engine::sim::{Clock, Simulator, Stats};
+use crate::engine::sim::{check_state, Clock, Simulator, Stats};
 use crate::error::ParameterError;
 use crate::model::galerkin::Region;
 use nalgebra::{DMatrix, DVector};
@@ -212,7 +212,7 @@ impl RigidImpact {
     }
 
     /// Runs from x0 at t = 0 until t_end.
-    pub fn run(&self, x0: &DVector<f64>, t_end: f64) -> RigidRun {
+    pub fn run(&self, x0: &DVector<f64>, t_end: f64) -> Result<RigidRun, crate::error::Error> {
         let period = self.sim.period();
         self.run_until(
             x0,
@@ -221,9 +221,16 @@ impl RigidImpact {
         )
     }
 
-    /// Runs from x0 at `start` (any time and forcing phase) until the clock reads `end`.
-    pub fn run_until(&self, x0: &DVector<f64>, start: Clock, end: Clock) -> RigidRun {
-        self.run_core(x0, start, end, None)
+    /// Runs from x0 at `start` (any time and forcing phase) until the clock reads `end`. A
+    /// state of the wrong length or not finite is an error.
+    pub fn run_until(
+        &self,
+        x0: &DVector<f64>,
+        start: Clock,
+        end: Clock,
+    ) -> Result<RigidRun, crate::error::Error> {
+        check_state(x0, 2 * self.sim.model().modes(), "the rigid-impact model")?;
+        Ok(self.run_core(x0, start, end, None))
     }
 
     /// P^m(x) from the start of cycle 0 with its Jacobian, the monodromy matrix: the free
@@ -245,6 +252,7 @@ impl RigidImpact {
         x: &DVector<f64>,
         m: u64,
     ) -> Result<(DVector<f64>, DMatrix<f64>, u64), crate::error::Error> {
+        check_state(x, 2 * self.sim.model().modes(), "the rigid-impact model")?;
         let dim = x.len();
         let period = self.sim.period();
         let mut jac = DMatrix::identity(dim, dim);

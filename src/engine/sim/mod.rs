@@ -43,6 +43,28 @@ use nalgebra::DVector;
 use signal::{Signal, Target, Term, TipSignal};
 use std::sync::OnceLock;
 
+/// A state x = [η; η̇] must have 2N finite entries: a wrong length would fail deep inside
+/// the linear algebra, and a NaN would run to a NaN "result".
+pub fn check_state(x: &DVector<f64>, dim: usize, model: &str) -> Result<(), Error> {
+    if x.len() != dim {
+        return Err(crate::error::ParameterError::new(
+            "state [η; η̇]",
+            format!("a vector of length {}", x.len()),
+            &format!("length {dim} for {model}"),
+        )
+        .into());
+    }
+    if let Some(i) = x.iter().position(|v| !v.is_finite()) {
+        return Err(crate::error::ParameterError::new(
+            "state [η; η̇]",
+            format!("entry {i} = {}", x[i]),
+            "finite entries",
+        )
+        .into());
+    }
+    Ok(())
+}
+
 /// Shortest certified step, as a fraction of the forcing period.
 const H_MIN_FRACTION: f64 = 1e-13;
 
@@ -426,6 +448,7 @@ impl Simulator {
         end: Clock,
         observer: &mut dyn Observer,
     ) -> Result<RunEnd, Error> {
+        check_state(x0, 2 * self.model.modes(), "the compliant model")?;
         let period = self.period();
         let omega = self.omega();
         let gap = self.model.params().gap;

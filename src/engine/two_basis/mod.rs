@@ -344,6 +344,7 @@ impl TwoBasisModel {
         end: Clock,
         count: usize,
     ) -> Result<TwoBasisRun, Error> {
+        crate::engine::sim::check_state(&state.x, 2 * self.modes(), "the two-basis model")?;
         let period = self.period();
         let mut stats = Stats::default();
         let mut clock = start;

@@ -299,7 +299,7 @@ fn rigid(args: &SimulateArgs, setup: Setup, bars: &Bars) -> Result<Report, Error
             &x,
             Clock::at_cycle(period, cycle),
             Clock::at_cycle(period, cycle + step as i64),
-        );
+        )?;
         if recording {
             events.extend(r.events.iter().filter_map(|e| match e {
                 RigidEvent::Impact {

@@ -185,7 +185,7 @@ fn one_mode(
     for j in 1..=per {
         let mut next = start;
         next.advance(j as f64 * period / p.samples_per_period as f64);
-        let run = rigid.run_until(&x, clock, next);
+        let run = rigid.run_until(&x, clock, next)?;
         for (t, v, _) in run.impacts() {
             phases.push((t - start.time()) / period);
             velocities.push(v / scale.1);

@@ -1,0 +1,220 @@
+//! The researcher's one call: from a model and a start, the periodic orbit it settles on,
+//! with its period, its Floquet multipliers and stability, and — for the compliant model —
+//! its energetic coefficient of restitution r_E (eq 39). It chains what the crate has
+//! once: the transient and the period from the strobe ([`crate::analysis::orbit`]), Newton
+//! shooting with the exact monodromy reported at the least period
+//! ([`crate::analysis::shooting`]), and the contact work on mode 1
+//! ([`crate::analysis::energetic`]).
+//!
+//! ```
+//! use impacting_cantilever::prelude::*;
+//! # fn main() -> Result<(), Error> {
+//! let sim = Simulator::new(problems::figure4(10).model()?)?;
+//! let o = find_orbit(&sim, &sim.rest(), &OrbitOptions { restitution: true, ..Default::default() })?;
+//! assert_eq!((o.period_m, o.impacts_n), (1, 1));
+//! assert!(o.stable && o.multipliers[0].norm() < 0.55);
+//! # Ok(())
+//! # }
+//! ```
+
+use crate::analysis::energetic::ContactWork;
+use crate::analysis::orbit::detect_period_by;
+use crate::analysis::shooting::{self, PeriodicOrbit};
+use crate::engine::map::PeriodMap;
+use crate::engine::rigid::RigidImpact;
+use crate::engine::sim::Simulator;
+use crate::engine::two_basis::TwoBasisModel;
+use crate::error::{Error, ParameterError};
+use nalgebra::DVector;
+use num_complex::Complex64;
+
+/// What [`find_orbit`] does, by name.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OrbitOptions {
+    /// Forcing periods run from the start before the orbit is read (0 to 1e8).
+    pub transient: u64,
+    /// Periods whose strobe gives the period m (2 to 10 000; the longest period found is
+    /// one less, at most 64).
+    pub window: u64,
+    /// The period m, when known (1 to 64); read from the window otherwise.
+    pub period: Option<u64>,
+    /// How near the window's strobe must repeat for its period to be taken (relative);
+    /// Newton then converges the orbit to 1e-12.
+    pub period_tolerance: f64,
+    /// Newton steps allowed.
+    pub max_iterations: usize,
+    /// Also r_E (eq 39) over one period of the orbit (the compliant model only).
+    pub restitution: bool,
+}
+
+impl Default for OrbitOptions {
+    fn default() -> Self {
+        Self {
+            transient: 1000,
+            window: 65,
+            period: None,
+            period_tolerance: 1e-3,
+            max_iterations: shooting::MAX_ITERATIONS,
+            restitution: false,
+        }
+    }
+}
+
+/// A periodic orbit as [`find_orbit`] gives it.
+#[derive(Debug, Clone)]
+pub struct FoundOrbit {
+    /// The state [η; η̇] at the start of a forcing period on the orbit.
+    pub state: DVector<f64>,
+    /// m: forcing periods per orbit period (the least).
+    pub period_m: u64,
+    /// n: entries into contact (impacts, for the rigid model) per orbit period.
+    pub impacts_n: u64,
+    /// The Floquet multipliers, largest modulus first.
+    pub multipliers: Vec<Complex64>,
+    /// All multipliers inside the unit circle.
+    pub stable: bool,
+    /// ‖P^m(x) − x‖∞/‖x‖∞ (at most 1e-12).
+    pub residual: f64,
+    /// Newton steps taken.
+    pub iterations: usize,
+    /// r_E (eq 39) over one period, when asked for (`None` if the balance has no real
+    /// root: mode 1 lost more to the contacts than it brought).
+    pub energetic_restitution: Option<f64>,
+    /// The orbit as the shooting module reports it (for JSON).
+    pub orbit: PeriodicOrbit,
+}
+
+impl FoundOrbit {
+    /// The largest multiplier modulus.
+    pub fn spectral_radius(&self) -> f64 {
+        self.multipliers.first().map_or(0.0, |z| z.norm())
+    }
+}
+
+/// r_E of an orbit, where the model defines it.
+pub trait EnergeticRestitution {
+    /// Eq (39) over one period of `orbit` (`Ok(None)` when the balance has no real root).
+    fn energetic_restitution(&self, orbit: &PeriodicOrbit) -> Result<Option<f64>, Error>;
+}
+
+impl EnergeticRestitution for Simulator {
+    fn energetic_restitution(&self, orbit: &PeriodicOrbit) -> Result<Option<f64>, Error> {
+        let mut work = ContactWork::for_mode(self.model(), 0)?;
+        self.run(&orbit.state_vector(), orbit.period_m, &mut work)?;
+        Ok(work.coefficient().value())
+    }
+}
+
+impl EnergeticRestitution for RigidImpact {
+    fn energetic_restitution(&self, _: &PeriodicOrbit) -> Result<Option<f64>, Error> {
+        Err(Error::Unsupported(
+            "r_E (eqs 38–39) weighs the work of the compliant contact force on mode 1; the \
+             rigid-impact model has no contact force — its restitution is its law"
+                .into(),
+        ))
+    }
+}
+
+impl EnergeticRestitution for TwoBasisModel {
+    fn energetic_restitution(&self, _: &PeriodicOrbit) -> Result<Option<f64>, Error> {
+        Err(Error::Unsupported(
+            "r_E is not derived for the two-basis model (its switches project the state, so \
+             mode 1's energy is not continuous across them)"
+                .into(),
+        ))
+    }
+}
+
+/// The periodic orbit `model` settles on from `start`: `options.transient` periods, the
+/// period m read from a window of `options.window` periods (or given), Newton shooting with
+/// the exact monodromy, the multipliers, and r_E if asked for. Bad options and starts are
+/// [`Error::Parameter`]; a start that settles on no period within the window, a Newton
+/// that does not converge, or a model without a Jacobian is [`Error::Unsupported`] with
+/// the reason.
+pub fn find_orbit<M: PeriodMap + EnergeticRestitution + ?Sized>(
+    model: &M,
+    start: &DVector<f64>,
+    options: &OrbitOptions,
+) -> Result<FoundOrbit, Error> {
+    check(options)?;
+    model.check_state("start", start)?;
+    let x = model.advance(start, 0, options.transient, false)?.state;
+    let (x, m) = match options.period {
+        Some(m) => (x, m),
+        None => {
+            let w = model.advance(&x, options.transient as i64, options.window, true)?;
+            let (m, best) = detect_period_by(
+                &w.strobe,
+                options.period_tolerance,
+                64.min(options.window as usize - 1),
+                &|a, b| model.residual(a, b),
+            );
+            let m = m.ok_or_else(|| {
+                Error::Unsupported(format!(
+                    "{} settles on no period within {} periods after a transient of {} \
+                     (best relative residual {best:.1e}, wanted {:.0e}): give the period, a \
+                     longer transient, or another start",
+                    model.name(),
+                    options.window,
+                    options.transient,
+                    options.period_tolerance
+                ))
+            })?;
+            (w.state, m)
+        }
+    };
+    let orbit = shooting::shoot_within(model, &x, m, options.max_iterations)?;
+    let energetic_restitution = if options.restitution {
+        model.energetic_restitution(&orbit)?
+    } else {
+        None
+    };
+    Ok(FoundOrbit {
+        state: orbit.state_vector(),
+        period_m: orbit.period_m,
+        impacts_n: orbit.impacts_n as u64,
+        multipliers: orbit.multipliers_complex(),
+        stable: orbit.stable,
+        residual: orbit.residual,
+        iterations: orbit.iterations,
+        energetic_restitution,
+        orbit,
+    })
+}
+
+fn check(o: &OrbitOptions) -> Result<(), ParameterError> {
+    if o.transient > 100_000_000 {
+        return Err(ParameterError::new(
+            "transient",
+            o.transient,
+            "0 to 1e8 periods",
+        ));
+    }
+    if !(2..=10_000).contains(&o.window) {
+        return Err(ParameterError::new(
+            "window",
+            o.window,
+            "2 to 10 000 periods",
+        ));
+    }
+    if let Some(m) = o.period {
+        if !(1..=64).contains(&m) {
+            return Err(ParameterError::new("period m", m, "1 to 64"));
+        }
+    }
+    if !(o.period_tolerance > 0.0 && o.period_tolerance < 1.0) {
+        return Err(ParameterError::new(
+            "period_tolerance",
+            o.period_tolerance,
+            "a relative tolerance in (0, 1)",
+        ));
+    }
+    if !(1..=1000).contains(&o.max_iterations) {
+        return Err(ParameterError::new(
+            "max_iterations",
+            o.max_iterations,
+            "1 to 1000",
+        ));
+    }
+    Ok(())
+}
