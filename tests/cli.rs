@@ -564,3 +564,53 @@ fn book_only_names_scenes_of_the_registry() {
         "{err}"
     );
 }
+
+#[test]
+fn every_json_output_carries_its_schema_version_and_one_name_per_quantity() {
+    let fig4 = [
+        "--modes",
+        "3",
+        "--stop-stiffness",
+        "100",
+        "--zeta1",
+        "0.01",
+        "--omega",
+        "2",
+        "--periods",
+        "300",
+    ];
+    let runs: Vec<(&str, Vec<&str>)> = vec![
+        (
+            "simulate",
+            [&["simulate"][..], &fig4[..], &["--record", "4", "--json"]].concat(),
+        ),
+        ("orbit", [&["orbit"][..], &fig4[..], &["--json"]].concat()),
+        (
+            "modes",
+            vec!["modes", "--modes", "3", "--stop-stiffness", "100", "--json"],
+        ),
+        (
+            "scene",
+            vec!["scene", "spectrum", "--json", "--out", "spectrum-out"],
+        ),
+    ];
+    let mut docs = Vec::new();
+    for (command, args) in runs {
+        let (code, out, err) = cantilever(&args);
+        assert_eq!(code, 0, "{command}: {err}");
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        assert_eq!(v["schema_version"], 1, "{command}");
+        assert_eq!(v["command"], command);
+        docs.push(v);
+    }
+    // n of (m, n) and k/k₁ have one name in every command
+    assert_eq!(docs[0]["impacts_n"], docs[1]["impacts_n"]);
+    assert_eq!(
+        docs[0]["impacts_n"], docs[0]["impacts_per_period"],
+        "the alias of one release"
+    );
+    assert_eq!(docs[1]["stop_stiffness_over_k1"], 100.0);
+    assert_eq!(docs[0]["inputs"]["stop_stiffness_over_k1"], 100.0);
+    assert_eq!(docs[2]["stop_stiffness_over_k1"], 100.0);
+    assert_eq!(docs[1]["omega_over_beta1_squared"], 2.0);
+}

@@ -297,11 +297,18 @@ pub fn write_atomically(path: &Path, text: &str) -> Result<(), Error> {
     })
 }
 
+/// The version of every JSON document this crate writes (the command line's outputs, the
+/// key numbers, the atlas shards): the same names for the same quantities everywhere,
+/// documented in the book's chapter on output formats. Raised when a field is renamed or
+/// removed; added fields do not raise it.
+pub const SCHEMA_VERSION: u32 = 1;
+
 /// The key numbers as a citable document: the scene, the paper's claim, the method, the
 /// parameters, the provenance, the verdict and every number with its uncertainty (the
 /// shape of `key_numbers.json` and of `cantilever scene NAME --json`).
 pub fn key_numbers_document(spec: &dyn Entry, out: &SceneOutput) -> serde_json::Value {
     serde_json::json!({
+        "schema_version": SCHEMA_VERSION,
         "scene": spec.name(),
         "paper": spec.paper(),
         "claim": spec.claim(),

@@ -408,6 +408,7 @@ pub const SCAN: [usize; 21] = [
 #[derive(Debug, Clone, Serialize)]
 pub struct ModesNeeded {
     /// k/k₁.
+    #[serde(rename = "stop_stiffness_over_k1")]
     pub k_over_k1: f64,
     /// The relative tolerance asked for.
     pub tolerance: f64,

@@ -71,8 +71,9 @@ enum Command {
     /// Output fields (--json): period_m — the smallest m ≤ max_period_searched
     /// (= min(--max-period, record/2)) with ‖x(t₀+mT) − x(t₀)‖∞ < tolerance·‖x(t₀)‖∞ on the
     /// stroboscopic map at the end of the window, else null; periodicity_residual — the
-    /// smallest such residual (null with fewer than 2 recorded periods); impacts_per_period
-    /// — entries into contact (rigid: impacts) per period m, null when not periodic;
+    /// smallest such residual (null with fewer than 2 recorded periods); impacts_n —
+    /// entries into contact (rigid: impacts) per period m, null when not periodic (also as
+    /// impacts_per_period, its name before schema 1, for one release);
     /// contacts_in_window — entries in the whole recorded window; events — time, cycle,
     /// phase (fraction of T), entering, grazing (a touch with zero normal velocity to
     /// round-off: recorded, no switch), tip_velocity, modal_velocities (η̇ at the event;
@@ -228,6 +229,32 @@ fn emit(text: &str) {
     }
 }
 
+/// A command's JSON document with the schema version and the command's name first (see
+/// [`scene::SCHEMA_VERSION`]).
+fn versioned(command: &str, value: serde_json::Value) -> serde_json::Value {
+    let mut out = serde_json::Map::new();
+    out.insert("schema_version".into(), scene::SCHEMA_VERSION.into());
+    out.insert("command".into(), command.into());
+    match value {
+        serde_json::Value::Object(fields) => {
+            for (k, v) in fields {
+                if k != "schema_version" {
+                    out.insert(k, v);
+                }
+            }
+        }
+        other => {
+            out.insert("result".into(), other);
+        }
+    }
+    serde_json::Value::Object(out)
+}
+
+/// A JSON document for stdout.
+fn json_text(command: &str, value: serde_json::Value) -> String {
+    serde_json::to_string_pretty(&versioned(command, value)).unwrap_or_default()
+}
+
 /// `println!` through [`emit`].
 macro_rules! outln {
     ($($arg:tt)*) => {
@@ -315,7 +342,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             scene::write(spec, &output, &dir)?;
             if json {
                 let doc = scene::key_numbers_document(spec, &output);
-                outln!("{}", serde_json::to_string_pretty(&doc).unwrap_or_default());
+                outln!("{}", json_text("scene", doc));
             } else {
                 outln!("{}", output.rendered.table);
                 errln!("wrote {}", dir.display());
@@ -330,10 +357,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::Simulate { args, json } => {
             let report = simulate::run(&args)?;
             if json {
-                outln!(
-                    "{}",
-                    serde_json::to_string_pretty(&simulate::to_json(&report)).unwrap_or_default()
-                );
+                outln!("{}", json_text("simulate", simulate::to_json(&report)));
             } else {
                 emit(&simulate::to_text(&report));
             }
@@ -342,10 +366,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::Cite { scene, key, json } => {
             let c = cite::run(&scene, key.as_deref(), &progress::Bars::default())?;
             if json {
-                outln!(
-                    "{}",
-                    serde_json::to_string_pretty(&cite::to_json(&c)).unwrap_or_default()
-                );
+                outln!("{}", json_text("cite", cite::to_json(&c)));
             } else {
                 emit(&cite::to_text(&c));
             }
@@ -359,7 +380,10 @@ fn run(cli: Cli) -> Result<(), Failure> {
         } => {
             let m = convergence::modes_needed(stop_stiffness, tolerance, zeta1)?;
             if json {
-                outln!("{}", serde_json::to_string_pretty(&m).unwrap_or_default());
+                outln!(
+                    "{}",
+                    json_text("modes-needed", serde_json::to_value(&m).unwrap_or_default())
+                );
             } else {
                 outln!("N* = {} for relative accuracy {tolerance:e} at k = {stop_stiffness}k₁ (set by the {})", m.needed, m.hardest);
                 for (name, s) in &m.studies {
@@ -381,10 +405,8 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::Orbit { args, json } => {
             let report = orbit::run(&args)?;
             if json {
-                outln!(
-                    "{}",
-                    serde_json::to_string_pretty(&report).unwrap_or_default()
-                );
+                let doc = serde_json::to_value(&report).unwrap_or_default();
+                outln!("{}", json_text("orbit", doc));
             } else {
                 emit(&orbit::to_text(&report));
             }
@@ -393,10 +415,8 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::Continue { args, json } => {
             let report = continue_cmd::run(&args)?;
             if json {
-                outln!(
-                    "{}",
-                    serde_json::to_string_pretty(&report).unwrap_or_default()
-                );
+                let doc = serde_json::to_value(&report).unwrap_or_default();
+                outln!("{}", json_text("continue", doc));
             } else {
                 emit(&continue_cmd::to_text(&report));
             }
@@ -418,7 +438,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let d = diff_cmd::run(&old, &new)?;
             if json {
                 let doc = impacting_cantilever::results::diff::to_json(&d);
-                outln!("{}", serde_json::to_string_pretty(&doc).unwrap_or_default());
+                outln!("{}", json_text("diff", doc));
             } else {
                 emit(&impacting_cantilever::results::diff::to_text(&d));
             }
@@ -481,8 +501,12 @@ fn modes_command(modes: usize, k_over_k1: f64, json: bool) -> Result<(), Failure
         }
     }
     if json {
-        let doc = serde_json::json!({"modes": modes, "k_over_k1": k_over_k1, "eigenvalues": rows});
-        outln!("{}", serde_json::to_string_pretty(&doc).unwrap_or_default());
+        let doc = serde_json::json!({
+            "modes": modes,
+            "stop_stiffness_over_k1": k_over_k1,
+            "eigenvalues": rows,
+        });
+        outln!("{}", json_text("modes", doc));
     }
     Ok(())
 }

@@ -40,8 +40,10 @@ pub struct Report {
     /// The parameters, as given.
     pub modes: usize,
     /// k/k₁.
+    #[serde(rename = "stop_stiffness_over_k1")]
     pub k_over_k1: f64,
     /// ω/(β₁⁻)².
+    #[serde(rename = "omega_over_beta1_squared")]
     pub omega_over_w1: f64,
     /// ζ₁.
     pub zeta1: f64,

@@ -25,6 +25,22 @@ use std::collections::HashMap;
 use std::path::Path;
 use std::time::Instant;
 
+/// The examples of `examples/`, shown by the library chapter.
+const EXAMPLES: [(&str, &str); 3] = [
+    (
+        "find_orbit.rs",
+        include_str!("../../../examples/find_orbit.rs"),
+    ),
+    (
+        "custom_model.rs",
+        include_str!("../../../examples/custom_model.rs"),
+    ),
+    (
+        "rigid_impact.rs",
+        include_str!("../../../examples/rigid_impact.rs"),
+    ),
+];
+
 /// How long a build took and what it reused, for the command line to report (the library
 /// prints nothing).
 #[derive(Debug, Clone)]
@@ -143,6 +159,14 @@ pub fn build_only(
         }
     }
     let fig4 = fig4.context("the registry has no fig4 scene")?;
+    // the library chapter shows the examples as compiled with this build (the tests run
+    // them, tests/api.rs)
+    let examples = generated.join("examples");
+    std::fs::create_dir_all(&examples)
+        .with_context(|| format!("creating {}", examples.display()))?;
+    for (name, source) in EXAMPLES {
+        scene::write_atomically(&examples.join(name), source)?;
+    }
     worked::write(
         &generated.join(worked::DIR),
         &fig4,

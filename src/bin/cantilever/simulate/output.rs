@@ -158,6 +158,8 @@ pub fn to_json(r: &Report) -> Value {
         "periodicity_residual": r.periodicity_residual,
         "periodicity_tolerance": a.periodicity_tolerance,
         "max_period_searched": r.max_period_searched,
+        "impacts_n": r.impacts_per_period,
+        // the same, under its name before schema version 1 (kept for one release)
         "impacts_per_period": r.impacts_per_period,
         "contacts_in_window": r.contacts_in_window,
         "max_tip": r.max_tip.map(|m| m.value),
@@ -282,6 +284,7 @@ pub fn write_files(r: &Report) -> Result<(), Error> {
     if let Some(path) = &r.args.final_state {
         let doc = json!({
             "modes": r.args.modes,
+            "schema_version": impacting_cantilever::results::scene::SCHEMA_VERSION,
             "time": r.final_clock.time(),
             "cycle": r.final_clock.cycles,
             "phase": r.final_clock.offset / r.final_clock.period,
