@@ -32,8 +32,9 @@
 //! | [`results`] | `scene`, `scenes`, `render`, `citation`, `diff`, `book` | the paper's results: scenes, plots and tables, citations, comparisons of key numbers, the book |
 //!
 //! The `cantilever` command line (feature `cli`, on by default) lives in
-//! `src/bin/cantilever/`; a program that uses only the library can depend on the crate
-//! with `default-features = false` and compiles no CLI crates.
+//! `src/bin/cantilever/`. The scenes and their plots need feature `plots` (on with `cli`);
+//! a program that uses only the models and analyses depends on the crate with
+//! `default-features = false` and compiles neither the CLI crates nor plotters.
 
 #![warn(missing_docs)]
 

@@ -2,6 +2,7 @@
 //! with its expected behaviour — a correct result in bounded time, or exit 2 with one line
 //! naming the parameter and the range the method supports. Never a panic, a NaN, a hang,
 //! a wrapped count or a result that is wrong and looks right.
+#![cfg(feature = "cli")]
 
 use std::path::PathBuf;
 use std::process::{Command, Stdio};

@@ -1,5 +1,6 @@
 //! The command line: bad input exits with status 2 and one line naming the parameter
 //! and what is allowed; scenes print their key numbers as JSON.
+#![cfg(feature = "cli")]
 
 use std::process::Command;
 

@@ -4,6 +4,7 @@
 use impacting_cantilever::base::golden::{self, GoldenRoots};
 use impacting_cantilever::base::numerics::Quadrature;
 use impacting_cantilever::model::continuum::{self, ModeShape};
+#[cfg(feature = "plots")]
 use impacting_cantilever::results::scenes::spectrum;
 
 /// The accuracy target for roots.
@@ -165,6 +166,7 @@ fn mode_shapes_stay_finite_and_accurate_for_large_index() {
 }
 
 #[test]
+#[cfg(feature = "plots")]
 fn small_k_law_remainder_is_second_order() {
     let law =
         spectrum::small_k_law(1, &spectrum::SpectrumParams::default().small_k_ladder).unwrap();

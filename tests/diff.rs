@@ -1,6 +1,7 @@
 //! `cantilever diff`: two sets of key numbers compared against their uncertainties, on
 //! synthetic pairs whose answer is known (inside, outside, added, removed, unit changed,
 //! malformed), and on the committed published numbers against themselves.
+#![cfg(feature = "cli")]
 
 use impacting_cantilever::base::report::{KeyNumbers, Uncertainty};
 use impacting_cantilever::results::diff::{self, Change};

@@ -2,6 +2,7 @@
 //! backed by assertions against independent values so that a changed digit is explained
 //! rather than re-accepted. The numbers at the book's resolution are in `published.rs`
 //! (scenes that are cheap at full resolution are snapshotted there only).
+#![cfg(feature = "plots")]
 
 use impacting_cantilever::base::provenance::Provenance;
 use impacting_cantilever::results::scene::{self, Resolution, Scene, SceneOutput, Silent};

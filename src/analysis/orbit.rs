@@ -133,9 +133,9 @@ fn window_from<M: PeriodMap + ?Sized>(
 pub enum OrbitKind {
     /// Period m, n contacts per period.
     Periodic {
-        /// m.
+        /// m, the period in forcing periods.
         m: u64,
-        /// n.
+        /// n, the entries into contact (impacts, for the rigid model) per period m.
         n: u64,
     },
     /// No period ≤ 32 within the window.

@@ -28,7 +28,7 @@ pub struct Tolerances {
 /// A switching event found by the reference integrator.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct RefEvent {
-    /// t.
+    /// t, the time of the event (non-dimensional beam time).
     pub time: f64,
     /// Entering contact.
     pub entering: bool,

@@ -98,9 +98,9 @@ impl Forcing {
 /// ([`GalerkinModel::oscillator`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Oscillator {
-    /// k.
+    /// k, the stiffness (force per unit displacement).
     pub stiffness: f64,
-    /// c.
+    /// c, the viscous damping coefficient (force per unit velocity).
     pub damping: f64,
     /// F.
     pub forcing: f64,
@@ -304,7 +304,7 @@ impl GalerkinModel {
         })
     }
 
-    /// N.
+    /// N, the number of modes.
     pub fn modes(&self) -> usize {
         self.modal_stiffness.len()
     }

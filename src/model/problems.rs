@@ -19,7 +19,7 @@ use serde::Serialize;
 /// gap d₀, α = 0.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Forced {
-    /// N.
+    /// N, the number of modes.
     pub modes: usize,
     /// k/k₁.
     pub k_over_k1: f64,

@@ -2,8 +2,10 @@
 
 pub mod citation;
 pub mod diff;
+#[cfg(feature = "plots")]
 pub mod render;
 pub mod scene;
+#[cfg(feature = "plots")]
 pub mod scenes;
 
 #[cfg(feature = "book")]

@@ -9,7 +9,7 @@
 use crate::base::provenance::Provenance;
 use crate::base::report::KeyNumbers;
 use crate::error::Error;
-use crate::results::render::RenderError;
+use crate::error::RenderError;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 

@@ -37,7 +37,7 @@ use serde::{Deserialize, Serialize};
 /// What the atlas computes.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct AtlasParams {
-    /// N.
+    /// N, the number of modes.
     pub modes: usize,
     /// k/k₁ range (log-spaced, inclusive).
     pub k_over_k1_range: (f64, f64),
@@ -306,9 +306,9 @@ pub fn row(p: &AtlasParams, i: usize, progress: &(dyn Fn() + Sync)) -> Result<Ro
 /// (interleaved, so each shard gets a share of the costly stiff rows).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Shard {
-    /// I, from 0.
+    /// I, this shard's index, from 0.
     pub index: usize,
-    /// N.
+    /// N, the number of shards.
     pub count: usize,
 }
 

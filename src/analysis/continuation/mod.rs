@@ -144,7 +144,7 @@ impl Settings {
 /// One point of a branch: a periodic orbit at parameter p.
 #[derive(Debug, Clone, Serialize)]
 pub struct BranchPoint {
-    /// p.
+    /// p, the continuation parameter (k/k₁ or ω/(β₁⁻)²).
     pub parameter: f64,
     /// The state [η; η̇] at the start of a forcing period.
     pub state: Vec<f64>,

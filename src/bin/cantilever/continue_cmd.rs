@@ -47,7 +47,7 @@ pub struct Report {
     pub parameter: &'static str,
     /// The starting orbit's parameter value.
     pub start: f64,
-    /// N.
+    /// N, the number of modes.
     pub modes: usize,
     /// The branches (0: towards --to; then the other way; then period-doubled ones).
     pub branches: Vec<Branch>,

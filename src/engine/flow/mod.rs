@@ -104,7 +104,7 @@ const NEAR_DEFECTIVE_COSINE: f64 = 0.9995;
 pub struct RegionFlow {
     /// Which region.
     region: Region,
-    /// N.
+    /// N, the number of modes.
     modes: usize,
     /// Eigenvalues λ_k of A^± (2N, conjugate pairs adjacent or real).
     lambda: Vec<Complex64>,
@@ -270,7 +270,7 @@ impl RegionFlow {
         self.region
     }
 
-    /// N.
+    /// N, the number of modes.
     pub fn modes(&self) -> usize {
         self.modes
     }

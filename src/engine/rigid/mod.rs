@@ -35,7 +35,7 @@ pub enum RigidEvent {
     /// An impact: time, incoming and outgoing tip velocity φ(1)ᵀη̇, and the modal
     /// velocities η̇⁻ and η̇⁺ = −\[R\]η̇⁻.
     Impact {
-        /// t.
+        /// t, the time of the event (non-dimensional beam time).
         time: f64,
         /// Tip velocity before (> 0, approaching).
         incoming: f64,
@@ -55,12 +55,12 @@ pub enum RigidEvent {
     },
     /// The tip is held at the stop from `time` (after a chatter).
     StickStart {
-        /// t.
+        /// t, the time of the event (non-dimensional beam time).
         time: f64,
     },
     /// The contact force reaches zero at `time` and the tip flies off.
     StickEnd {
-        /// t.
+        /// t, the time of the event (non-dimensional beam time).
         time: f64,
     },
 }

@@ -15,7 +15,7 @@
 //! **Release** is the first time the contact force would have to pull:
 //! L(t) = |φ|²λ = φᵀf cos ωt − φᵀKη_c − Σ_i (φᵀKw_i ζ_i + φᵀCw_i ζ̇_i) falls through zero.
 //! L is a harmonic plus constant plus a block (or pair) term per mode, so the certified
-//! crossing search of the simulator ([`crate::engine::sim::crossing`]) finds it.
+//! crossing search of the simulator (`sim::crossing`) finds it.
 //!
 //! **Entry** at a chatter's accumulation point: the state is carried by free flight to the
 //! accumulation time (the remaining impacts only change the tip velocity) and projected

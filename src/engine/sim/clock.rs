@@ -41,7 +41,7 @@ impl Clock {
         c
     }
 
-    /// t.
+    /// t, the time (non-dimensional beam time, EI = ρA = L = 1).
     pub fn time(&self) -> f64 {
         self.cycles as f64 * self.period + self.offset
     }

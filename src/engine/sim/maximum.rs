@@ -1,6 +1,6 @@
 //! The certified maximum of the tip displacement over a segment.
 //!
-//! With the best value B attained so far, the certified search ([`super::crossing`]) for a
+//! With the best value B attained so far, the certified search (`super::crossing`) for a
 //! zero of d − (B + δ) either finds none (then d ≤ B + δ on the whole segment) or finds
 //! where d rises through it; an ascent from there raises B to a local maximum, and the
 //! search resumes from that crossing at the new level. δ = 64ε times the signal's scale.

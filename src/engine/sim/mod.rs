@@ -2,15 +2,15 @@
 //! with certified switching times.
 //!
 //! Within a region the solution is exact ([`crate::engine::flow`]); the tip gap of each segment is
-//! an exponential sum with derivative bounds ([`signal`]), so the first switch is found by
-//! a certified search ([`crossing`]) and polished to round-off. What a run records is up
+//! an exponential sum with derivative bounds (`signal`), so the first switch is found by
+//! a certified search (`crossing`) and polished to round-off. What a run records is up
 //! to its [`Observer`]s ([`observe`]): events, stroboscopic samples, dense output, the exact
 //! energy budget ([`energy`]), the certified maximum of the tip ([`maximum`]).
 //!
 //! The modules, one concept each:
 //! - [`clock`]: t = cycles·T + offset, so the forcing phase stays exact over long runs;
-//! - [`signal`]: the segment's tip signal and its derivative bounds;
-//! - [`crossing`]: the certified crossing search;
+//! - `signal`: the segment's tip signal and its derivative bounds;
+//! - `crossing`: the certified crossing search;
 //! - [`maximum`]: the certified maximum;
 //! - [`energy`]: the exact energy integrals;
 //! - [`observe`]: the observer trait and the standard observers;
@@ -20,12 +20,12 @@
 //! the region.
 
 pub mod clock;
-pub mod crossing;
+pub(crate) mod crossing;
 pub mod energy;
 pub mod maximum;
 pub mod monodromy;
 pub mod observe;
-pub mod signal;
+pub(crate) mod signal;
 
 pub use clock::Clock;
 pub use energy::EnergyBudget;

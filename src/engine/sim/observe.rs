@@ -69,7 +69,7 @@ impl SegmentView<'_> {
 
 /// A switching event as the driver sees it.
 pub struct EventView<'a> {
-    /// When.
+    /// When, as a clock (whole forcing periods and the time into the current one).
     pub clock: Clock,
     /// Entering contact (`true`) or leaving it.
     pub entering: bool,
@@ -168,9 +168,9 @@ tuple_observer!(A, B, C, D, E);
 /// A recorded switching event.
 #[derive(Debug, Clone, serde::Serialize)]
 pub struct Event {
-    /// When.
+    /// When, as a clock (whole forcing periods and the time into the current one).
     pub clock: Clock,
-    /// t.
+    /// t, the time of the event (non-dimensional beam time).
     pub time: f64,
     /// Entering contact (`true`) or leaving it.
     pub entering: bool,
@@ -319,7 +319,7 @@ impl Observer for Energy {
 pub struct TipMaximum {
     /// Where it is attained.
     pub clock: Clock,
-    /// t.
+    /// t, the time of the event (non-dimensional beam time).
     pub time: f64,
     /// max d.
     pub value: f64,

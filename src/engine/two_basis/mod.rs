@@ -165,7 +165,7 @@ impl TwoBasisModel {
         })
     }
 
-    /// N.
+    /// N, the number of modes.
     pub fn modes(&self) -> usize {
         self.mu.len()
     }

@@ -42,7 +42,7 @@ impl Observer for Ticker<'_> {
 /// One event of the recorded window.
 #[derive(Debug, Clone)]
 pub struct EventOut {
-    /// t.
+    /// t, the time of the event (non-dimensional beam time).
     pub time: f64,
     /// The forcing cycle it falls in.
     pub cycle: i64,

@@ -38,7 +38,7 @@ impl Default for Fig2Params {
 /// One truncation N across the k grid.
 #[derive(Debug, Clone, Serialize)]
 pub struct Truncation {
-    /// N.
+    /// N, the number of modes.
     pub modes: usize,
     /// λ_i(k) of K⁺, indexed [i − 1][grid point].
     pub lambda: Vec<Vec<f64>>,
@@ -49,7 +49,7 @@ pub struct Truncation {
 /// A table row.
 #[derive(Debug, Clone, Serialize)]
 pub struct Fig2Row {
-    /// N.
+    /// N, the number of modes.
     pub modes: usize,
     /// k/k₁.
     pub k_over_k1: f64,

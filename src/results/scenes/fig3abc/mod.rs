@@ -63,7 +63,7 @@ impl Default for Fig3abcParams {
 /// One truncation across ε.
 #[derive(Debug, Clone, Serialize)]
 pub struct Series {
-    /// N.
+    /// N, the number of modes.
     pub modes: usize,
     /// κ = kNε² = N.
     pub kappa: f64,

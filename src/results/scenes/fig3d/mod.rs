@@ -48,7 +48,7 @@ impl Default for Fig3dParams {
 pub struct Profile {
     /// "stiffness-limit" or "collocation".
     pub law: String,
-    /// N.
+    /// N, the number of modes.
     pub modes: usize,
     /// w_t at the sample points (None if the law could not be built).
     pub values: Option<Vec<f64>>,

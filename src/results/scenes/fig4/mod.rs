@@ -101,7 +101,7 @@ pub struct Evidence {
 /// One panel.
 #[derive(Debug, Clone, Serialize)]
 pub struct Fig4Panel {
-    /// N.
+    /// N, the number of modes.
     pub modes: usize,
     /// Our orbit.
     pub kind: OrbitKind,

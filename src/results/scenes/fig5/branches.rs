@@ -48,7 +48,7 @@ pub struct OverlayBranch {
 /// All branches of one truncation.
 #[derive(Debug, Clone, Serialize)]
 pub struct BranchSet {
-    /// N.
+    /// N, the number of modes.
     pub modes: usize,
     /// The branches.
     pub branches: Vec<OverlayBranch>,

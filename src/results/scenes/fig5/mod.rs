@@ -137,7 +137,7 @@ pub struct StartResult {
 /// One diagram (one N).
 #[derive(Debug, Clone, Serialize)]
 pub struct Diagram {
-    /// N.
+    /// N, the number of modes.
     pub modes: usize,
     /// Per k: one result per start.
     pub columns: Vec<Vec<StartResult>>,

@@ -28,7 +28,7 @@ use serde::Serialize;
 /// What the scene computes.
 #[derive(Debug, Clone, Serialize)]
 pub struct Fig9Params {
-    /// N.
+    /// N, the number of modes.
     pub modes: usize,
     /// ζ₁.
     pub zeta1: f64,

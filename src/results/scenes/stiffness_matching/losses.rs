@@ -16,7 +16,7 @@ use serde::Serialize;
 pub struct Losses {
     /// k/k₁.
     pub k_over_k1: f64,
-    /// N.
+    /// N, the number of modes.
     pub modes: usize,
     /// One contact: relative energy lost entering contact (the pre-impact profile φ₁/2
     /// projected onto the constrained modes) …

@@ -125,7 +125,7 @@ pub struct AtStiffness {
 /// A velocity profile after the contact.
 #[derive(Debug, Clone, Serialize)]
 pub struct Profile {
-    /// N.
+    /// N, the number of modes.
     pub modes: usize,
     /// w_t(s) at finite k.
     pub compliant: Vec<f64>,

@@ -29,7 +29,7 @@ use std::time::Instant;
 /// What the scene computes.
 #[derive(Debug, Clone, Serialize)]
 pub struct WorkPrecisionParams {
-    /// N.
+    /// N, the number of modes.
     pub modes: usize,
     /// Forcing periods simulated from rest.
     pub periods: u64,
@@ -141,7 +141,7 @@ pub fn machine() -> String {
 pub struct CostRun {
     /// Which model.
     pub label: String,
-    /// N.
+    /// N, the number of modes.
     pub modes: usize,
     /// k/k₁.
     pub stop_stiffness_over_k1: f64,
