@@ -201,21 +201,27 @@ pub fn settle(
             &mut (&mut events, &mut strobe, &mut dense),
         )?
         .state;
-    let (m, residual) = detect_period(&strobe.states(), PERIODIC_TOLERANCE, MAX_PERIOD);
-    let end = start.cycles + window as i64;
-    let mut orbit = Orbit {
-        kind: OrbitKind::NotPeriodic,
+    // the window as every model's settle sees it, labelled the same way
+    let mut entries = vec![0; window as usize];
+    for e in events.events.iter().filter(|e| e.entering && !e.grazing) {
+        let k = (e.clock.cycles - start.cycles).clamp(0, window as i64 - 1);
+        entries[k as usize] += 1;
+    }
+    let periods = Periods {
+        state: state.clone(),
+        strobe: strobe.states(),
+        entries,
+        ..Periods::default()
+    };
+    let (kind, residual) = label(sim, &periods);
+    Ok(Orbit {
+        kind,
         residual,
         events: events.events,
         dense: dense.samples,
         window_start: start.cycles,
         state,
-    };
-    if let Some(m) = m {
-        let n = orbit.entries(end - m as i64, end).count() as u64;
-        orbit.kind = OrbitKind::Periodic { m, n };
-    }
-    Ok(orbit)
+    })
 }
 
 /// [`settle_map`] in chunks: `chunk` more periods at a time until the orbit over the
