@@ -5,7 +5,8 @@
 //!
 //! **Chattering policy** (impacts accumulating in finite time; never an endless loop):
 //! - an impact whose incoming tip velocity is below `v_stick` (relative to the velocity
-//!   scale of the run), or a run of three impacts whose intervals shrink geometrically
+//!   scale of the run, and at least to ωA_free, the forcing's, so that a restarted run
+//!   judges it alike), or a run of three impacts whose intervals shrink geometrically
 //!   (ratio ρ < 1, consistent within 10%) with the last interval below 1e-6 T, is a chatter;
 //! - its accumulation time is extrapolated geometrically, t_∞ = t_n + Δ_n ρ/(1 − ρ);
 //! - the model moves to t_∞, puts the tip on the stop with zero tip velocity, and
@@ -141,6 +142,9 @@ pub struct RigidImpact {
     pub settings: RigidSettings,
     /// The constrained flow of a sticking phase, built on first use.
     sticking: OnceLock<Sticking>,
+    /// ωA_free, the forcing's tip velocity scale (0 unforced): the least velocity scale a
+    /// chatter is judged on.
+    velocity_floor: f64,
 }
 
 impl RigidImpact {
@@ -161,11 +165,13 @@ impl RigidImpact {
                 "finite entries",
             ));
         }
+        let velocity_floor = sim.model().free_tip_amplitude().1;
         Ok(Self {
             sim,
             law,
             settings: RigidSettings::default(),
             sticking: OnceLock::new(),
+            velocity_floor,
         })
     }
 
@@ -230,6 +236,7 @@ impl RigidImpact {
         end: Clock,
     ) -> Result<RigidRun, crate::error::Error> {
         check_state(x0, 2 * self.sim.model().modes(), "the rigid-impact model")?;
+        self.check_not_beyond(x0)?;
         Ok(self.run_core(x0, start, end, None))
     }
 
@@ -253,6 +260,7 @@ impl RigidImpact {
         m: u64,
     ) -> Result<(DVector<f64>, DMatrix<f64>, u64), crate::error::Error> {
         check_state(x, 2 * self.sim.model().modes(), "the rigid-impact model")?;
+        self.check_not_beyond(x)?;
         let dim = x.len();
         let period = self.sim.period();
         let mut jac = DMatrix::identity(dim, dim);
@@ -318,7 +326,42 @@ impl RigidImpact {
         let mut impacts: Vec<(f64, f64)> = Vec::new();
         let mut v_scale = self.tip_velocity(&x).abs();
         let mut outcome = Outcome::Completed;
+        // a start resting on the stop while the stop pushes (a run that ended stuck,
+        // restarted at a period boundary, a chunk or from a saved state) is still stuck:
+        // sticking survives any restart
+        let mut stuck = false;
+        if self.at_rest_on_stop(&x) {
+            let on = self.sticking().project(&x);
+            if self.sticking().push(&on, self.sim.omega() * clock.offset) > 0.0 {
+                if !self.can_stick() {
+                    // the limit of this law's chatter is not a sticking phase: stop, as a
+                    // chatter found in flight does
+                    events.push(RigidEvent::Chatter {
+                        time: clock.time(),
+                        accumulation: clock.time(),
+                    });
+                    return RigidRun {
+                        events,
+                        time: clock.time(),
+                        clock,
+                        state: x,
+                        outcome: Outcome::Chatter(clock.time()),
+                        stats,
+                    };
+                }
+                x = on;
+                stuck = true;
+            }
+        }
         while clock.before(&end) {
+            if std::mem::take(&mut stuck) {
+                if self.hold_from(&mut x, &mut clock, &end, &mut events, &mut stats) {
+                    impacts.clear();
+                    v_scale = 0.0;
+                    continue;
+                }
+                break;
+            }
             // to the end of this period, or to `end` within it
             let (horizon, last) = if clock.cycles < end.cycles {
                 (period - clock.offset, false)
@@ -365,7 +408,10 @@ impl RigidImpact {
                 outcome = Outcome::ImpactLimit;
                 break;
             }
-            if let Some(t_inf) = self.chatter(&impacts, incoming, v_scale, period) {
+            // the run's own speeds, but never below the forcing's (ωA_free): a run restarted
+            // in the middle of a chatter judges its impacts as the whole run would
+            let scale = v_scale.max(self.velocity_floor);
+            if let Some(t_inf) = self.chatter(&impacts, incoming, scale, period) {
                 events.push(RigidEvent::Chatter {
                     time: t,
                     accumulation: t_inf,
@@ -389,28 +435,12 @@ impl RigidImpact {
                     impacts.clear();
                     continue;
                 }
-                events.push(RigidEvent::StickStart { time: clock.time() });
-                let (release, state) = self.sticking().hold(
-                    &x,
-                    &clock,
-                    end.time() - clock.time(),
-                    self.sim.h_min(),
-                    self.sim.settings().root_tolerance,
-                    &mut stats,
-                );
-                x = state;
-                match release {
-                    Some(s) => {
-                        clock.advance(s);
-                        events.push(RigidEvent::StickEnd { time: clock.time() });
-                        impacts.clear();
-                        // the next flight's speeds are measured afresh
-                        v_scale = 0.0;
-                    }
-                    None => {
-                        clock = end;
-                        break;
-                    }
+                if self.hold_from(&mut x, &mut clock, &end, &mut events, &mut stats) {
+                    impacts.clear();
+                    // the next flight's speeds are measured afresh
+                    v_scale = 0.0;
+                } else {
+                    break;
                 }
             }
         }
@@ -422,6 +452,77 @@ impl RigidImpact {
             outcome,
             stats,
         }
+    }
+
+    /// Holds x (on the stop) in the sticking phase from `clock` until the stop would pull
+    /// or `end`; true if it was released before `end` (x and the clock are then at the
+    /// release), false if it is still stuck at `end`.
+    fn hold_from(
+        &self,
+        x: &mut DVector<f64>,
+        clock: &mut Clock,
+        end: &Clock,
+        events: &mut Vec<RigidEvent>,
+        stats: &mut Stats,
+    ) -> bool {
+        events.push(RigidEvent::StickStart { time: clock.time() });
+        let (release, state) = self.sticking().hold(
+            x,
+            clock,
+            end.time() - clock.time(),
+            self.sim.h_min(),
+            self.sim.settings().root_tolerance,
+            stats,
+        );
+        *x = state;
+        match release {
+            Some(s) => {
+                clock.advance(s);
+                events.push(RigidEvent::StickEnd { time: clock.time() });
+                true
+            }
+            None => {
+                *clock = *end;
+                false
+            }
+        }
+    }
+
+    /// How far beyond the stop the tip is (φ(1)ᵀη − d₀), and the scales a distance and a
+    /// speed of this state are judged on: |d₀| + |φ(1)|·‖η‖∞ and |φ(1)|·‖η̇‖∞ + ω times
+    /// the first.
+    fn stop_measures(&self, x: &DVector<f64>) -> (f64, f64, f64, f64) {
+        let model = self.sim.model();
+        let n = model.modes();
+        let phi = model.tip();
+        let g = model.switching_function(&x.rows(0, n).into_owned());
+        let v = phi.dot(&x.rows(n, n));
+        let length = model.params().gap.abs() + phi.amax() * x.rows(0, n).amax();
+        let speed = phi.amax() * x.rows(n, n).amax() + self.sim.omega() * length;
+        (g, v, length, speed)
+    }
+
+    /// A rigid stop cannot be penetrated: a state with the tip beyond it (by more than
+    /// 1e-9 of its scale) is not a state of the model.
+    fn check_not_beyond(&self, x: &DVector<f64>) -> Result<(), ParameterError> {
+        let (g, _, length, _) = self.stop_measures(x);
+        if g > 1e-9 * length {
+            return Err(ParameterError::new(
+                "initial state",
+                format!("a tip {} beyond the rigid stop", crate::error::number(g)),
+                "a tip at or before the stop d₀ (a rigid stop cannot be penetrated; a \
+                 preloaded stop, d₀ < 0 from rest, is the compliant model's)",
+            ));
+        }
+        Ok(())
+    }
+
+    /// Whether the tip rests on the stop: on it and still, to 1e-9 of the state's own
+    /// scales (closer than that, a free state would reach the stop at once and chatter to
+    /// the same sticking phase).
+    pub fn at_rest_on_stop(&self, x: &DVector<f64>) -> bool {
+        let (g, v, length, speed) = self.stop_measures(x);
+        g.abs() <= 1e-9 * length && v.abs() <= 1e-9 * speed
     }
 
     /// The accumulation time if the recent impacts chatter.

@@ -54,11 +54,11 @@ pub fn check_state(x: &DVector<f64>, dim: usize, model: &str) -> Result<(), Erro
         )
         .into());
     }
-    if let Some(i) = x.iter().position(|v| !v.is_finite()) {
+    if let Some(i) = x.iter().position(|v| !v.is_finite() || v.abs() > 1e100) {
         return Err(crate::error::ParameterError::new(
             "state [η; η̇]",
             format!("entry {i} = {}", x[i]),
-            "finite entries",
+            "finite entries of magnitude at most 1e100 (the energies, their squares, must not overflow)",
         )
         .into());
     }

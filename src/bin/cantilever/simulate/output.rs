@@ -35,6 +35,30 @@ pub fn initial_state(
     args: &SimulateArgs,
     model: &GalerkinModel,
 ) -> Result<(DVector<f64>, String), ParameterError> {
+    let (x, start) = read_initial_state(args, model)?;
+    let size = x.amax();
+    let flag = if args.initial_profile.is_some() {
+        "--initial-profile"
+    } else {
+        "--initial-state"
+    };
+    if size > super::MAX_STATE {
+        return Err(ParameterError::new(
+            flag,
+            format!("a state of size {}", impacting_cantilever::error::number(size)),
+            "entries of magnitude at most 1e6 (lengths in units of the free tip amplitude at resonance, as |d₀| ≤ 1e6)",
+        ));
+    }
+    if size > 0.0 && size < super::MIN_SCALE {
+        return Err(super::tiny(flag, size));
+    }
+    Ok((x, start))
+}
+
+fn read_initial_state(
+    args: &SimulateArgs,
+    model: &GalerkinModel,
+) -> Result<(DVector<f64>, String), ParameterError> {
     let n = model.modes();
     if let Some(path) = &args.initial_state {
         let v = read_json("--initial-state", path)?;

@@ -270,6 +270,21 @@ fn compliant(args: &SimulateArgs, setup: Setup, bars: &Bars) -> Result<Report, E
     })
 }
 
+/// One dense row of the rigid model: in contact when the tip rests on the stop.
+fn rigid_sample(model: &RigidImpact, t: f64, x: &DVector<f64>) -> DenseRow {
+    let m = model.sim.model();
+    let n = m.modes();
+    let tip = m.tip().dot(&x.rows(0, n));
+    let velocity = m.tip().dot(&x.rows(n, n));
+    (
+        t,
+        model.at_rest_on_stop(x),
+        tip,
+        velocity,
+        x.iter().copied().collect(),
+    )
+}
+
 fn rigid(args: &SimulateArgs, setup: Setup, bars: &Bars) -> Result<Report, Error> {
     let sim = Simulator::new(setup.model.clone())?;
     let period = sim.period();
@@ -282,6 +297,7 @@ fn rigid(args: &SimulateArgs, setup: Setup, bars: &Bars) -> Result<Report, Error
     let mut final_clock = Clock::at_cycle(period, 0);
     let mut events = Vec::new();
     let mut strobe_states = Vec::new();
+    let mut dense = Vec::new();
     let total = args.periods + args.record;
     let mut done = 0u64;
     while done < total && outcome == Outcome::Completed {
@@ -295,11 +311,52 @@ fn rigid(args: &SimulateArgs, setup: Setup, bars: &Bars) -> Result<Report, Error
         if recording && strobe_states.is_empty() {
             strobe_states.push(x.clone());
         }
-        let r = model.run_until(
-            &x,
-            Clock::at_cycle(period, cycle),
-            Clock::at_cycle(period, cycle + step as i64),
-        )?;
+        let r = if recording && args.dense.is_some() {
+            // the window's dense output: the period in equal pieces, chained (a sticking
+            // phase survives the restarts)
+            if dense.is_empty() {
+                dense.push(rigid_sample(&model, cycle as f64 * period, &x));
+            }
+            let pieces = args.dense_per_period.max(1);
+            let mut clock = Clock::at_cycle(period, cycle);
+            let mut state = x.clone();
+            let mut joined: Option<impacting_cantilever::engine::rigid::RigidRun> = None;
+            for j in 1..=pieces {
+                let next = if j == pieces {
+                    Clock::at_cycle(period, cycle + 1)
+                } else {
+                    let mut c = Clock::at_cycle(period, cycle);
+                    c.advance(period * j as f64 / pieces as f64);
+                    c
+                };
+                let piece = model.run_until(&state, clock, next)?;
+                state = piece.state.clone();
+                clock = piece.clock;
+                dense.push(rigid_sample(&model, clock.time(), &state));
+                let stop = piece.outcome != Outcome::Completed;
+                joined = Some(match joined.take() {
+                    None => piece,
+                    Some(mut all) => {
+                        all.events.extend(piece.events);
+                        all.state = piece.state;
+                        all.clock = piece.clock;
+                        all.time = piece.time;
+                        all.outcome = piece.outcome;
+                        all
+                    }
+                });
+                if stop {
+                    break;
+                }
+            }
+            joined.expect("at least one piece")
+        } else {
+            model.run_until(
+                &x,
+                Clock::at_cycle(period, cycle),
+                Clock::at_cycle(period, cycle + step as i64),
+            )?
+        };
         if recording {
             events.extend(r.events.iter().filter_map(|e| match e {
                 RigidEvent::Impact {
@@ -360,7 +417,7 @@ fn rigid(args: &SimulateArgs, setup: Setup, bars: &Bars) -> Result<Report, Error
         outcome: outcome_text,
         final_clock,
         final_state: x,
-        dense: Vec::new(),
+        dense,
         wall_seconds: 0.0,
         args: args.clone(),
         setup,
