@@ -292,3 +292,207 @@ fn item_8_a_huge_initial_state_is_refused_not_run_to_nan() {
     let x = DVector::from_vec(vec![1e200, 0.0, 0.0, 0.0, 0.0, 0.0]);
     assert!(sim.run(&x, 1, &mut ()).is_err());
 }
+
+/// A fresh directory for one test.
+fn scratch(name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("round3-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Runs the command line in `dir`.
+fn cantilever_in(dir: &std::path::Path, args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_cantilever"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn item_10_special_files_are_written_through_and_links_kept() {
+    use std::os::unix::fs::FileTypeExt;
+    let d = scratch("special");
+    let sim = [
+        "simulate",
+        "--modes",
+        "3",
+        "--zeta1",
+        "0.01",
+        "--omega",
+        "2",
+        "--periods",
+        "10",
+        "--record",
+        "2",
+    ];
+    // a FIFO stays a FIFO, and its reader gets the trajectory
+    let fifo = d.join("pipe");
+    assert!(Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .unwrap()
+        .success());
+    let reader = std::thread::spawn({
+        let fifo = fifo.clone();
+        move || std::fs::read_to_string(fifo).unwrap()
+    });
+    let (code, _, err) = cantilever_in(&d, &[&sim[..], &["--dense", "pipe"]].concat());
+    assert_eq!(code, 0, "{err}");
+    let text = reader.join().unwrap();
+    assert!(text.starts_with("t,in_contact,tip"), "{text:.40}");
+    assert!(std::fs::symlink_metadata(&fifo)
+        .unwrap()
+        .file_type()
+        .is_fifo());
+    // a link is kept and its target written
+    std::fs::write(d.join("target.json"), "old").unwrap();
+    std::os::unix::fs::symlink("target.json", d.join("link.json")).unwrap();
+    let (code, _, err) = cantilever_in(&d, &[&sim[..], &["--final-state", "link.json"]].concat());
+    assert_eq!(code, 0, "{err}");
+    assert!(std::fs::symlink_metadata(d.join("link.json"))
+        .unwrap()
+        .file_type()
+        .is_symlink());
+    assert!(std::fs::read_to_string(d.join("target.json"))
+        .unwrap()
+        .contains("\"state\""));
+    // a character device made here (the null device's numbers) stays a device
+    let dev = d.join("null");
+    let made = Command::new("mknod")
+        .args([dev.to_str().unwrap(), "c", "1", "3"])
+        .status()
+        .is_ok_and(|s| s.success());
+    if made {
+        let (code, _, err) = cantilever_in(&d, &[&sim[..], &["--dense", "null"]].concat());
+        assert_eq!(code, 0, "{err}");
+        assert!(std::fs::symlink_metadata(&dev)
+            .unwrap()
+            .file_type()
+            .is_char_device());
+    } else {
+        eprintln!("mknod not permitted here: the device case was not run");
+    }
+    // /dev/stdout is a link to a pipe: written through
+    let (code, out, err) = cantilever_in(&d, &[&sim[..], &["--dense", "/dev/stdout"]].concat());
+    assert_eq!(code, 0, "{err}");
+    assert!(out.starts_with("t,in_contact,tip"), "{out:.40}");
+    // ... and to a regular file (`> out.csv`): through the shell's descriptor, so the
+    // trajectory and the summary after it both arrive, neither over the other
+    let redirected = std::fs::File::create(d.join("out.csv")).unwrap();
+    let status = Command::new(env!("CARGO_BIN_EXE_cantilever"))
+        .args([&sim[..], &["--dense", "/dev/stdout"]].concat())
+        .current_dir(&d)
+        .stdout(redirected)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let text = std::fs::read_to_string(d.join("out.csv")).unwrap();
+    assert!(text.starts_with("t,in_contact,tip"), "{text:.40}");
+    assert!(
+        text.contains("wall time"),
+        "the summary after the trajectory is lost"
+    );
+    // a directory, a missing directory: refused before any work, nothing created
+    for (path, says) in [
+        (".", "a directory"),
+        ("no/such/file.csv", "existing directory"),
+    ] {
+        let (code, _, err) = cantilever_in(&d, &[&sim[..], &["--dense", path]].concat());
+        assert_eq!(code, 2, "{path}: {err}");
+        assert!(err.contains(says), "{err}");
+    }
+    let (code, _, err) = cantilever_in(&d, &["scene", "spectrum", "--out", "target.json"]);
+    assert_eq!(code, 2, "{err}");
+    // a failed run leaves no --out behind
+    let (code, _, _) = cantilever_in(&d, &["atlas-merge", "target.json", "--out", "fresh-out"]);
+    assert_eq!(code, 2);
+    assert!(!d.join("fresh-out").exists());
+}
+
+#[test]
+fn item_11_an_output_set_is_written_whole_even_by_concurrent_writers() {
+    let d = scratch("sets");
+    // two different atlases (seeds), each in two shards
+    for (seed, name) in [("1", "a"), ("2", "b")] {
+        for shard in ["0/2", "1/2"] {
+            let out = format!("{name}{}.json", &shard[..1]);
+            let (code, _, err) = cantilever_in(
+                &d,
+                &[
+                    "atlas",
+                    "--resolution",
+                    "test",
+                    "--seed",
+                    seed,
+                    "--shard",
+                    shard,
+                    "--out",
+                    &out,
+                ],
+            );
+            assert_eq!(code, 0, "{err}");
+        }
+    }
+    let seed_of = |file: &str| -> serde_json::Value {
+        let text = std::fs::read_to_string(d.join("out").join(file)).unwrap();
+        let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        let p = if file == "data.json" {
+            &v["data"]["params"]
+        } else {
+            &v["parameters"]
+        };
+        p["seed"].clone()
+    };
+    for _ in 0..12 {
+        let spawn = |a: &str, b: &str| {
+            Command::new(env!("CARGO_BIN_EXE_cantilever"))
+                .args(["atlas-merge", a, b, "--out", "out"])
+                .current_dir(&d)
+                .stderr(std::process::Stdio::null())
+                .spawn()
+                .unwrap()
+        };
+        let (mut x, mut y) = (spawn("a0.json", "a1.json"), spawn("b0.json", "b1.json"));
+        assert!(x.wait().unwrap().success() && y.wait().unwrap().success());
+        // one atlas's files, never a mix
+        assert_eq!(seed_of("data.json"), seed_of("key_numbers.json"));
+    }
+    // nothing left beside the output but its lock
+    let stray: Vec<String> = std::fs::read_dir(&d)
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.contains(".tmp") || n.contains(".old"))
+        .collect();
+    assert!(stray.is_empty(), "{stray:?}");
+    // an interrupted scene exits as interrupted and leaves no temporary behind
+    let mut child = Command::new(env!("CARGO_BIN_EXE_cantilever"))
+        .args(["scene", "fig5", "--out", "interrupted"])
+        .current_dir(&d)
+        .stderr(std::process::Stdio::null())
+        .stdout(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(300));
+    assert!(Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap()
+        .success());
+    let status = child.wait().unwrap();
+    assert_eq!(status.code(), Some(130), "{status:?}");
+    let left: Vec<String> = std::fs::read_dir(&d)
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.contains("interrupted"))
+        .collect();
+    assert!(left.is_empty(), "{left:?}");
+}

@@ -2,6 +2,7 @@
 
 pub mod citation;
 pub mod diff;
+pub mod files;
 #[cfg(feature = "plots")]
 pub mod render;
 pub mod scene;

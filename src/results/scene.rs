@@ -278,24 +278,7 @@ pub fn output_of<S: Scene>(
     })
 }
 
-/// Writes `text` to `path` atomically: into a temporary file beside it, then renamed, so
-/// an interrupted run never leaves a truncated file or a fresh file beside stale ones.
-pub fn write_atomically(path: &Path, text: &str) -> Result<(), Error> {
-    let io = |source| Error::Io {
-        path: path.display().to_string(),
-        source,
-    };
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let tmp = path.with_file_name(format!(".{name}.{}.tmp", std::process::id()));
-    std::fs::write(&tmp, text).map_err(io)?;
-    std::fs::rename(&tmp, path).map_err(|e| {
-        let _ = std::fs::remove_file(&tmp);
-        io(e)
-    })
-}
+pub use crate::results::files::write_atomically;
 
 /// The version of every JSON document this crate writes (the command line's outputs, the
 /// key numbers, the atlas shards): the same names for the same quantities everywhere,
@@ -322,12 +305,9 @@ pub fn key_numbers_document(spec: &dyn Entry, out: &SceneOutput) -> serde_json::
 
 /// Writes `plot.svg`, `table.md` (and any further tables), `data.json` (with its
 /// provenance), `key_numbers.json` ([`key_numbers_document`]) and `verdict.json` into
-/// `dir`, each atomically.
+/// `dir`, as one set ([`crate::results::files::write_set`]: never new files beside old
+/// ones).
 pub fn write(spec: &dyn Entry, out: &SceneOutput, dir: &Path) -> Result<(), Error> {
-    std::fs::create_dir_all(dir).map_err(|source| Error::Io {
-        path: dir.display().to_string(),
-        source,
-    })?;
     let json = |v: &serde_json::Value| serde_json::to_string_pretty(v).unwrap_or_default();
     let mut files = vec![
         ("plot.svg".to_string(), out.rendered.svg.clone()),
@@ -335,6 +315,7 @@ pub fn write(spec: &dyn Entry, out: &SceneOutput, dir: &Path) -> Result<(), Erro
         (
             "data.json".to_string(),
             json(&serde_json::json!({
+                "schema_version": SCHEMA_VERSION,
                 "scene": spec.name(),
                 "provenance": out.provenance,
                 "data": out.data,
@@ -352,8 +333,5 @@ pub fn write(spec: &dyn Entry, out: &SceneOutput, dir: &Path) -> Result<(), Erro
     for (name, table) in &out.rendered.extra_tables {
         files.push((format!("{name}.md"), table.clone()));
     }
-    for (name, text) in files {
-        write_atomically(&dir.join(name), &text)?;
-    }
-    Ok(())
+    crate::results::files::write_set(dir, &files)
 }

@@ -117,27 +117,5 @@ pub fn merge(files: &[PathBuf], out: &Path) -> Result<(), Error> {
 
 /// `path`'s directory exists (or is created) and accepts a file.
 fn writable_file(path: &Path) -> Result<(), ParameterError> {
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    let fail = |e: std::io::Error| {
-        ParameterError::new(
-            "--out",
-            path.display(),
-            &format!("a writable file path ({e})"),
-        )
-    };
-    if path.is_dir() {
-        return Err(ParameterError::new(
-            "--out",
-            path.display(),
-            "a file path, not a directory",
-        ));
-    }
-    std::fs::create_dir_all(&dir).map_err(fail)?;
-    let probe = dir.join(format!(".probe.{}", std::process::id()));
-    std::fs::write(&probe, b"").map_err(fail)?;
-    let _ = std::fs::remove_file(&probe);
-    Ok(())
+    impacting_cantilever::results::files::check_writable("--out", path)
 }

@@ -270,7 +270,22 @@ macro_rules! errln {
     }};
 }
 
+/// On SIGINT or SIGTERM, deletes the temporary files of any write under way and exits
+/// with 128 + the signal, as a shell expects.
+fn clean_up_on_signals() {
+    use signal_hook::consts::{SIGINT, SIGTERM};
+    if let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGINT, SIGTERM]) {
+        std::thread::spawn(move || {
+            if let Some(signal) = signals.forever().next() {
+                impacting_cantilever::results::files::remove_temporaries();
+                std::process::exit(128 + signal);
+            }
+        });
+    }
+}
+
 fn main() -> ExitCode {
+    clean_up_on_signals();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) => {
@@ -452,18 +467,32 @@ fn run(cli: Cli) -> Result<(), Failure> {
     }
 }
 
-/// `dir` exists (or is created) and accepts a file.
+/// `dir` can receive a scene's files: an existing directory that accepts a file, or a new
+/// one whose nearest existing ancestor does (it is created only when the files are
+/// written, so a failed run leaves nothing behind).
 fn writable_dir(dir: &std::path::Path) -> Result<(), ParameterError> {
-    let fail = |e: std::io::Error| {
-        ParameterError::new(
-            "--out",
-            dir.display(),
-            &format!("a writable directory ({e})"),
-        )
-    };
-    std::fs::create_dir_all(dir).map_err(fail)?;
-    let probe = dir.join(format!(".probe.{}", std::process::id()));
-    std::fs::write(&probe, b"").map_err(fail)?;
+    let fail = |why: String| ParameterError::new("--out", dir.display(), &why);
+    let mut probe_dir = dir.to_path_buf();
+    if dir.exists() {
+        if !dir.is_dir() {
+            return Err(fail("a directory (it is a file or a device)".into()));
+        }
+    } else {
+        while !probe_dir.exists() {
+            probe_dir = match probe_dir.parent() {
+                Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+                _ => std::path::PathBuf::from("."),
+            };
+        }
+        if !probe_dir.is_dir() {
+            return Err(fail(format!(
+                "a directory path ({} is not a directory)",
+                probe_dir.display()
+            )));
+        }
+    }
+    let probe = probe_dir.join(format!(".cantilever-probe.{}", std::process::id()));
+    std::fs::write(&probe, b"").map_err(|e| fail(format!("a writable directory ({e})")))?;
     let _ = std::fs::remove_file(&probe);
     Ok(())
 }

@@ -122,16 +122,7 @@ pub fn check_writable(args: &SimulateArgs) -> Result<(), ParameterError> {
         ("--dense", &args.dense),
     ] {
         if let Some(path) = path {
-            let probe = path.with_file_name(format!(
-                ".{}.probe",
-                path.file_name()
-                    .map(|n| n.to_string_lossy())
-                    .unwrap_or_default()
-            ));
-            std::fs::write(&probe, b"").map_err(|e| {
-                ParameterError::new(flag, path.display(), &format!("a writable path ({e})"))
-            })?;
-            let _ = std::fs::remove_file(&probe);
+            impacting_cantilever::results::files::check_writable(flag, path)?;
         }
     }
     Ok(())

@@ -1,0 +1,440 @@
+//! Output files that never destroy and never mix: what is at an output path decides how it
+//! is written.
+//!
+//! - A regular file, or nothing: written to a temporary file beside it and renamed over it,
+//!   so a reader sees the old file or the new one, never half of either.
+//! - A symbolic link: the link is kept and its target written as above (as `rsync`,
+//!   coreutils and git treat links), at most 40 links deep.
+//! - A FIFO or a character device (`/dev/null`, `/dev/stdout`): written through, in place;
+//!   renaming over it would replace a device or a pipe with a regular file.
+//! - A directory, a block device or a socket: refused (checked before any work by
+//!   [`check_writable`]).
+//!
+//! A scene's output set (plot, tables, data, key numbers) is written as a whole
+//! ([`write_set`]): into a sibling temporary directory that is then swapped in, under a
+//! lock, so an interrupted run or two concurrent writers never leave new files beside old
+//! ones. Temporaries are registered while they exist; [`remove_temporaries`] deletes them
+//! (the command line calls it on SIGINT and SIGTERM).
+
+use crate::error::{Error, ParameterError};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+/// Temporary files and directories that exist now, each with the output it stands in
+/// for when it is an old set moved aside (to be put back if the new one is not in place).
+static TEMPORARIES: Mutex<Vec<(PathBuf, Option<PathBuf>)>> = Mutex::new(Vec::new());
+
+fn register(path: &Path) {
+    register_aside(path, None);
+}
+
+/// `path` holds the old contents of `home`, moved aside for a swap.
+fn register_aside(path: &Path, home: Option<&Path>) {
+    if let Ok(mut t) = TEMPORARIES.lock() {
+        t.push((path.to_path_buf(), home.map(Path::to_path_buf)));
+    }
+}
+
+fn unregister(path: &Path) {
+    if let Ok(mut t) = TEMPORARIES.lock() {
+        t.retain(|(p, _)| p != path);
+    }
+}
+
+/// Deletes every temporary file and directory still registered (an interrupted write's),
+/// and puts an old output set back where an interrupted swap had moved it aside and the
+/// new set is not yet in place — an interrupted write never loses the old output.
+pub fn remove_temporaries() {
+    let entries = match TEMPORARIES.lock() {
+        Ok(mut t) => std::mem::take(&mut *t),
+        Err(_) => return,
+    };
+    for (p, home) in entries {
+        if let Some(home) = home {
+            if !home.exists() && std::fs::rename(&p, &home).is_ok() {
+                continue;
+            }
+        }
+        if p.is_dir() {
+            let _ = std::fs::remove_dir_all(&p);
+        } else {
+            let _ = std::fs::remove_file(&p);
+        }
+    }
+}
+
+fn io(path: &Path) -> impl Fn(std::io::Error) -> Error + '_ {
+    move |source| Error::Io {
+        path: path.display().to_string(),
+        source,
+    }
+}
+
+/// What is at a path, as far as writing it goes.
+#[derive(Debug, Clone, PartialEq)]
+enum Target {
+    /// A regular file or nothing: replace atomically.
+    Replace(PathBuf),
+    /// A FIFO or a character device: write through.
+    Through(PathBuf),
+    /// The process's own standard output (1) or error (2), when it is a regular file: written
+    /// through the shell's open descriptor, so the file's offset is shared with the rest of
+    /// the output and nothing is overwritten.
+    Descriptor(u8),
+    /// Not writable as a file, with the reason.
+    Refuse(String),
+}
+
+/// The descriptor a path names, if it names one: `/dev/stdout` (1), `/dev/stderr` (2),
+/// `/dev/fd/N`, `/proc/self/fd/N` (N), and any other path under `/proc` (a number that
+/// matches no standard stream).
+fn descriptor(path: &Path) -> Option<u8> {
+    let text = path.to_string_lossy();
+    match text.as_ref() {
+        "/dev/stdout" => return Some(1),
+        "/dev/stderr" => return Some(2),
+        _ => {}
+    }
+    for prefix in ["/dev/fd/", "/proc/self/fd/"] {
+        if let Some(n) = text.strip_prefix(prefix) {
+            return Some(n.parse::<u8>().unwrap_or(u8::MAX));
+        }
+    }
+    text.starts_with("/proc/").then_some(u8::MAX)
+}
+
+/// What a write to `path` would reach, links followed.
+fn target(path: &Path) -> Target {
+    match std::fs::metadata(path) {
+        // the kernel follows the links (also /dev/stdout → /proc/self/fd/1 → a pipe)
+        Ok(meta) => {
+            let kind = meta.file_type();
+            if kind.is_file() {
+                // A descriptor named through /dev or /proc (`--dense /dev/stdout > out.csv`)
+                // is the shell's open file: renaming over the file it names would detach
+                // the descriptor, and opening it afresh would write at offset 0 over what
+                // the descriptor writes. Write through the descriptor itself.
+                return match descriptor(path) {
+                    Some(fd @ (1 | 2)) => Target::Descriptor(fd),
+                    Some(_) => Target::Refuse(
+                        "a regular file open on a descriptor other than standard output or \
+                         error: name the file itself"
+                            .into(),
+                    ),
+                    None => Target::Replace(std::fs::canonicalize(path).unwrap_or(path.into())),
+                };
+            }
+            if kind.is_dir() {
+                return Target::Refuse("a directory, not a file".into());
+            }
+            #[cfg(unix)]
+            {
+                use std::os::unix::fs::FileTypeExt;
+                if kind.is_fifo() || kind.is_char_device() {
+                    return Target::Through(path.to_path_buf());
+                }
+                if kind.is_block_device() {
+                    return Target::Refuse("a block device (a disk), not a file".into());
+                }
+                if kind.is_socket() {
+                    return Target::Refuse("a socket, not a file".into());
+                }
+            }
+            Target::Refuse("neither a file, a FIFO nor a character device".into())
+        }
+        // nothing there, or a link to nothing: the file to create is at the end of the links
+        Err(_) => {
+            let mut p = path.to_path_buf();
+            for _ in 0..40 {
+                match std::fs::symlink_metadata(&p) {
+                    Ok(m) if m.file_type().is_symlink() => match std::fs::read_link(&p) {
+                        Ok(link) => {
+                            p = match p.parent() {
+                                Some(parent) if link.is_relative() => parent.join(link),
+                                _ => link,
+                            };
+                        }
+                        Err(e) => return Target::Refuse(format!("an unreadable link ({e})")),
+                    },
+                    _ => return Target::Replace(p),
+                }
+            }
+            Target::Refuse("a chain of more than 40 links".into())
+        }
+    }
+}
+
+/// Checks, before any work, that `path` can be written as a file (see the module doc):
+/// refused when it is a directory, a block device or a socket, or when its directory does
+/// not exist or does not accept a file. `flag` names the option in the error.
+pub fn check_writable(flag: &str, path: &Path) -> Result<(), ParameterError> {
+    let bad = |why: String| ParameterError::new(flag, path.display(), &why);
+    match target(path) {
+        Target::Refuse(why) => Err(bad(format!("a writable file path (it is {why})"))),
+        Target::Through(_) | Target::Descriptor(_) => Ok(()),
+        Target::Replace(p) => {
+            let dir = match p.parent() {
+                Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+                _ => PathBuf::from("."),
+            };
+            if !dir.is_dir() {
+                return Err(bad(format!(
+                    "a file in an existing directory ({} is not one)",
+                    dir.display()
+                )));
+            }
+            let probe = dir.join(format!(".cantilever-probe.{}", std::process::id()));
+            std::fs::write(&probe, b"")
+                .map_err(|e| bad(format!("a file in a writable directory ({e})")))?;
+            let _ = std::fs::remove_file(&probe);
+            Ok(())
+        }
+    }
+}
+
+/// Writes `text` to `path` as the module doc says: atomically for a regular file (or none),
+/// into a link's target, through a FIFO or character device; an error for anything else.
+pub fn write_atomically(path: &Path, text: &str) -> Result<(), Error> {
+    match target(path) {
+        Target::Refuse(why) => Err(Error::Io {
+            path: path.display().to_string(),
+            source: std::io::Error::other(format!("cannot write a file here: it is {why}")),
+        }),
+        Target::Descriptor(fd) => {
+            let written = if fd == 1 {
+                let mut out = std::io::stdout().lock();
+                out.write_all(text.as_bytes()).and_then(|()| out.flush())
+            } else {
+                let mut err = std::io::stderr().lock();
+                err.write_all(text.as_bytes()).and_then(|()| err.flush())
+            };
+            written.map_err(io(path))
+        }
+        Target::Through(p) => {
+            let mut f = std::fs::OpenOptions::new()
+                .write(true)
+                .open(&p)
+                .map_err(io(&p))?;
+            f.write_all(text.as_bytes()).map_err(io(&p))?;
+            f.flush().map_err(io(&p))
+        }
+        Target::Replace(p) => {
+            let name = p
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default();
+            let tmp = p.with_file_name(format!(".{name}.{}.tmp", std::process::id()));
+            register(&tmp);
+            let written = std::fs::write(&tmp, text)
+                .and_then(|()| std::fs::rename(&tmp, &p))
+                .map_err(io(&p));
+            if written.is_err() {
+                let _ = std::fs::remove_file(&tmp);
+            }
+            unregister(&tmp);
+            written
+        }
+    }
+}
+
+/// Whether `dir` holds nothing but files named in `names` (and `.md` tables): a folder the
+/// writer owns and may replace as a whole.
+fn owned(dir: &Path, names: &[&str]) -> bool {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return false;
+    };
+    entries.flatten().all(|e| {
+        let name = e.file_name().to_string_lossy().into_owned();
+        e.file_type().is_ok_and(|t| t.is_file())
+            && (names.contains(&name.as_str()) || name.ends_with(".md"))
+    })
+}
+
+/// Writes a set of files into `dir` as a whole: all into a sibling temporary directory,
+/// then swapped in for the old set, under a lock on `dir` held for the whole write (a
+/// concurrent writer waits). When `dir` holds files of its own (say `--out .`), each file
+/// is written atomically in place instead, and the others are left alone. A link to a
+/// directory is followed and kept.
+pub fn write_set(dir: &Path, files: &[(String, String)]) -> Result<(), Error> {
+    let dir = match std::fs::canonicalize(dir) {
+        Ok(real) => real,
+        Err(_) => dir.to_path_buf(),
+    };
+    let parent = match dir.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    std::fs::create_dir_all(&parent).map_err(io(&parent))?;
+    let name = dir
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "out".into());
+    let lock_path = parent.join(format!(".{name}.lock"));
+    let lock = std::fs::OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(&lock_path)
+        .map_err(io(&lock_path))?;
+    lock.lock().map_err(io(&lock_path))?;
+    let names: Vec<&str> = files.iter().map(|(n, _)| n.as_str()).collect();
+    let result = if dir.exists() && !(dir.is_dir() && owned(&dir, &names)) {
+        if !dir.is_dir() {
+            return Err(Error::Io {
+                path: dir.display().to_string(),
+                source: std::io::Error::other("not a directory"),
+            });
+        }
+        files
+            .iter()
+            .try_for_each(|(n, text)| write_atomically(&dir.join(n), text))
+    } else {
+        swap_in(&parent, &name, &dir, files)
+    };
+    let _ = lock.unlock();
+    result
+}
+
+/// The new set in a temporary sibling, then renamed into place (the old set moved aside
+/// first and removed after).
+fn swap_in(parent: &Path, name: &str, dir: &Path, files: &[(String, String)]) -> Result<(), Error> {
+    let pid = std::process::id();
+    let fresh = parent.join(format!(".{name}.{pid}.tmp"));
+    let old = parent.join(format!(".{name}.{pid}.old"));
+    register(&fresh);
+    let _ = std::fs::remove_dir_all(&fresh);
+    let written = std::fs::create_dir(&fresh)
+        .map_err(io(&fresh))
+        .and_then(|()| {
+            files.iter().try_for_each(|(n, text)| {
+                let p = fresh.join(n);
+                std::fs::write(&p, text).map_err(io(&p))
+            })
+        });
+    if let Err(e) = written {
+        let _ = std::fs::remove_dir_all(&fresh);
+        unregister(&fresh);
+        return Err(e);
+    }
+    let had_old = dir.exists();
+    let swapped = (|| {
+        if had_old {
+            register_aside(&old, Some(dir));
+            std::fs::rename(dir, &old).map_err(io(dir))?;
+        }
+        std::fs::rename(&fresh, dir).map_err(io(dir))
+    })();
+    match swapped {
+        Ok(()) => {
+            unregister(&fresh);
+            if had_old {
+                let _ = std::fs::remove_dir_all(&old);
+                unregister(&old);
+            }
+            Ok(())
+        }
+        Err(e) => {
+            // put the old set back if it was moved
+            if had_old && !dir.exists() {
+                let _ = std::fs::rename(&old, dir);
+            }
+            unregister(&old);
+            let _ = std::fs::remove_dir_all(&fresh);
+            unregister(&fresh);
+            Err(e)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scratch(name: &str) -> PathBuf {
+        let d = std::env::temp_dir().join(format!("files-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&d);
+        std::fs::create_dir_all(&d).unwrap();
+        d
+    }
+
+    #[test]
+    fn a_set_replaces_the_old_one_whole_and_spares_a_folder_of_its_own() {
+        let d = scratch("set");
+        let out = d.join("fig4");
+        let set = |v: &str| {
+            vec![
+                ("plot.svg".to_string(), format!("<svg>{v}</svg>")),
+                ("data.json".to_string(), v.to_string()),
+            ]
+        };
+        write_set(&out, &set("1")).unwrap();
+        write_set(&out, &set("2")).unwrap();
+        assert_eq!(std::fs::read_to_string(out.join("data.json")).unwrap(), "2");
+        // nothing left beside it but the lock
+        let extra: Vec<String> = std::fs::read_dir(&d)
+            .unwrap()
+            .flatten()
+            .map(|e| e.file_name().to_string_lossy().into_owned())
+            .filter(|n| n != "fig4" && n != ".fig4.lock")
+            .collect();
+        assert!(extra.is_empty(), "{extra:?}");
+        // a folder with a file of the user's is written file by file, the file kept
+        std::fs::write(out.join("notes.txt"), "mine").unwrap();
+        write_set(&out, &set("3")).unwrap();
+        assert_eq!(
+            std::fs::read_to_string(out.join("notes.txt")).unwrap(),
+            "mine"
+        );
+        assert_eq!(std::fs::read_to_string(out.join("data.json")).unwrap(), "3");
+    }
+
+    #[test]
+    fn a_link_is_kept_and_its_target_written() {
+        let d = scratch("link");
+        let real = d.join("real.csv");
+        std::fs::write(&real, "old").unwrap();
+        let link = d.join("link.csv");
+        std::os::unix::fs::symlink("real.csv", &link).unwrap();
+        write_atomically(&link, "new").unwrap();
+        assert!(std::fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink());
+        assert_eq!(std::fs::read_to_string(&real).unwrap(), "new");
+        // a directory is refused before any work
+        assert!(check_writable("--dense", &d).is_err());
+        assert!(check_writable("--dense", &d.join("missing/x.csv")).is_err());
+        assert!(check_writable("--dense", &d.join("fresh.csv")).is_ok());
+    }
+
+    #[test]
+    fn an_interrupted_swap_puts_the_old_set_back() {
+        let d = scratch("restore");
+        let out = d.join("fig5");
+        write_set(&out, &[("data.json".to_string(), "old".to_string())]).unwrap();
+        // a swap interrupted after the old set was moved aside, before the new one is in
+        let aside = d.join(".fig5.1.old");
+        std::fs::rename(&out, &aside).unwrap();
+        register_aside(&aside, Some(&out));
+        let fresh = d.join(".fig5.1.tmp");
+        std::fs::create_dir(&fresh).unwrap();
+        register(&fresh);
+        remove_temporaries();
+        assert_eq!(
+            std::fs::read_to_string(out.join("data.json")).unwrap(),
+            "old"
+        );
+        assert!(!aside.exists() && !fresh.exists());
+    }
+
+    #[test]
+    fn descriptors_are_named_by_their_number() {
+        assert_eq!(descriptor(Path::new("/dev/stdout")), Some(1));
+        assert_eq!(descriptor(Path::new("/dev/fd/2")), Some(2));
+        assert_eq!(descriptor(Path::new("/proc/self/fd/7")), Some(7));
+        assert_eq!(descriptor(Path::new("/proc/1/root/x")), Some(u8::MAX));
+        assert_eq!(descriptor(Path::new("/dev/shm/x.csv")), None);
+        assert_eq!(descriptor(Path::new("out.csv")), None);
+    }
+}
