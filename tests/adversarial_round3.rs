@@ -496,3 +496,96 @@ fn item_11_an_output_set_is_written_whole_even_by_concurrent_writers() {
         .collect();
     assert!(left.is_empty(), "{left:?}");
 }
+
+/// The Figure 4 forcing (ζ₁ = 0.01, ω = 2(β₁⁻)², d₀ = 0) with `modes` modes and a stop of
+/// `k` k₁, from rest: the tip starts on the stop and is pushed into it.
+fn stiff_stop(modes: usize, k: f64) -> Simulator {
+    let forced = Forced {
+        modes,
+        k_over_k1: k,
+        zeta1: 0.01,
+        omega_over_w1: 2.0,
+        gap: 0.0,
+        printed_eq37_amplitude: false,
+    };
+    Simulator::new(forced.model().unwrap()).unwrap()
+}
+
+#[test]
+fn item_1_a_stiff_stop_costs_bounded_work_or_is_refused_with_the_reason() {
+    // N = 20 at 1e12 k₁ from rest: a release from the stop that leaves it tangentially
+    // took 8e7 switching-function evaluations (h_min steps through the round-off band) for
+    // one period; the band now allows steps that keep g below its uncertainty. Work counts,
+    // not times, so the bound is the same on any machine.
+    let sim = stiff_stop(20, 1e12);
+    let end = sim.run(&DVector::zeros(40), 1, &mut ()).unwrap();
+    assert!(end.stats.evaluations < 100_000, "{:?}", end.stats);
+    // N = 1 at 1e10 k₁: the tip chatters on the stop with free flights of ~1e-8 whose dip
+    // is below round-off; every entry must still move into the stop (this broke when the
+    // bracket of such a flight started at a noisy "negative" point on its falling side)
+    let sim = stiff_stop(1, 1e10);
+    let end = sim.run(&DVector::zeros(2), 2, &mut ()).unwrap();
+    assert!(
+        end.stats.segments > 1000,
+        "it does chatter: {:?}",
+        end.stats
+    );
+    // N = 10 at 1e12 k₁: ~1e5 micro-impacts per period at the contact frequency (the
+    // model's true behaviour, minutes per period): refused in bounded work with the reason
+    let sim = stiff_stop(10, 1e12);
+    let err = sim
+        .run(&DVector::zeros(20), 2, &mut ())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("entries into contact") && err.contains("contact frequency"),
+        "{err}"
+    );
+    // and the command line says so with exit 1 (legal input the method does not support)
+    let (code, _, err) = cantilever(&[
+        "simulate",
+        "--modes",
+        "10",
+        "--stop-stiffness",
+        "1e12",
+        "--zeta1",
+        "0.01",
+        "--omega",
+        "2",
+        "--periods",
+        "1",
+    ]);
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("--model rigid"), "{err}");
+}
+
+#[test]
+fn item_13_a_gap_at_the_settled_free_maximum_grazes_and_goes_on() {
+    // The free tip amplitude at ω = 2(β₁⁻)² in units of the resonant one: the settled
+    // free orbit grazes the stop. A grazing contact is legal; the run goes on and labels
+    // the orbit (it failed "entered contact with velocity -2.1e-11" in 9 of 15 runs,
+    // for gaps within a few ulps of this one).
+    let gap: f64 = 0.0066660741530747;
+    for ulps in [-2i64, -1, 0, 1, 2] {
+        let g = f64::from_bits((gap.to_bits() as i64 + ulps) as u64).to_string();
+        let (code, out, err) = cantilever(&[
+            "simulate",
+            "--modes",
+            "10",
+            "--stop-stiffness",
+            "100",
+            "--zeta1",
+            "0.01",
+            "--omega",
+            "2",
+            "--periods",
+            "2000",
+            "--gap",
+            &g,
+            "--json",
+        ]);
+        assert_eq!(code, 0, "gap {g}: {err}");
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        assert!(v["outcome"].is_string(), "{out:.300}");
+    }
+}

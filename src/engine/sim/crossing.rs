@@ -77,6 +77,7 @@ fn search<S: Signal + ?Sized>(
     let noise = |p: &Local| p.noise();
     let mut s = from;
     let mut p = sig.local(from, target);
+    let start = p;
     stats.evaluations += 1;
     // The last point with g < 0 strictly, with its value; and whether g has been
     // certainly negative yet.
@@ -110,13 +111,21 @@ fn search<S: Signal + ?Sized>(
                 return Some(Found::Touch(top));
             }
         }
-        let certify = if touches {
-            Local {
-                g: p.g + noise(&p),
-                ..p
-            }
-        } else {
-            p
+        // What the step must not pass over. In the band at the start (g within its
+        // uncertainty of zero and never yet certainly negative) a crossing counts only
+        // once g is certainly positive, so the step need only keep g below +noise — which
+        // lets a segment that leaves the surface tangentially (a release from the stop)
+        // take long steps instead of h_min ones through the band. Inside, a crossing
+        // counts at zero, and a touch (reported) at −noise.
+        let certify = Local {
+            g: if !inside {
+                p.g - noise(&p)
+            } else if touches {
+                p.g + noise(&p)
+            } else {
+                p.g
+            },
+            ..p
         };
         let h = certified_step(&certify, s_max - s)
             .max(h_min)
@@ -133,8 +142,30 @@ fn search<S: Signal + ?Sized>(
         stats.evaluations += 1;
         if next.g >= 0.0 && (inside || next.g > noise(&next)) {
             // A root in (s, s + step]: unique if the probe's monotonicity held; otherwise
-            // only reachable at the h_min floor or at a tangency within round-off.
-            let lo = last_negative.or_else(|| negative_point(sig, target, s, step, stats));
+            // only reachable at the h_min floor or at a tangency within round-off. From the
+            // start band, whose negative values are round-off, the bracket starts at the
+            // bottom of the dip the tip makes on leaving (where ġ = 0) when g is negative
+            // there: the root is then the rising one. Sought from a noisy "negative" point
+            // near the start instead, the polish may settle on the falling side (a dip of
+            // 1e-17 below a tip chattering at 1e10k₁ with N = 1 did: an "entry" moving
+            // away from the stop).
+            let dip = if inside {
+                None
+            } else {
+                [(from, start), (s, p)].into_iter().find_map(|(at, q)| {
+                    let bottom = at - q.gd / q.gdd;
+                    if q.gd < 0.0 && q.gdd > 0.0 && bottom > at && bottom < s + step {
+                        let b = sig.local(bottom, target);
+                        stats.evaluations += 1;
+                        (b.g < 0.0).then_some((bottom, b.g))
+                    } else {
+                        None
+                    }
+                })
+            };
+            let lo = dip
+                .or(last_negative)
+                .or_else(|| negative_point(sig, target, s, step, stats));
             return Some(Found::Crossing(match lo {
                 Some(lo) => polish(sig, target, lo, (s + step, next.g), rel_tol, stats),
                 // no negative value at all: the state left the region at its start
@@ -230,7 +261,9 @@ fn polish<S: Signal + ?Sized>(
         let p = sig.local(s, target);
         stats.evaluations += 1;
         stats.polish_evaluations += 1;
-        if p.g.abs() <= 8.0 * f64::EPSILON * p.scale {
+        // a root of g rising through zero: a point within round-off of zero where g falls
+        // (a small excursion of the start band, say) is not it — the bracket goes on
+        if p.g.abs() <= 8.0 * f64::EPSILON * p.scale && p.gd >= 0.0 {
             return s;
         }
         // (the representation floor is a fixed offset of g, not noise: the polish goes on

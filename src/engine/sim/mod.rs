@@ -71,6 +71,14 @@ const H_MIN_FRACTION: f64 = 1e-13;
 /// Longest segment without a restart, in forcing periods.
 const MAX_SEGMENT_PERIODS: i64 = 16;
 
+/// Most entries into contact in one forcing period. A tip that comes to rest on a very
+/// stiff stop goes on bouncing at the contact frequency (√k above the beam's): the
+/// compliant model really does make ~10⁵ micro-impacts per period at k = 10¹²k₁ with
+/// N = 10, each a segment to locate, which would take minutes per period. Beyond this
+/// many (about a second of work) the run stops with the reason and the ways out, instead
+/// of running on for hours.
+pub const MAX_CONTACTS_PER_PERIOD: u64 = 10_000;
+
 /// Work counters.
 #[derive(Debug, Clone, Copy, Default, serde::Serialize)]
 pub struct Stats {
@@ -186,7 +194,16 @@ impl<'a> Segment<'a> {
         let n = flow.modes();
         let (d_state, v_state) = (tip.dot(&x.rows(0, n)), tip.dot(&x.rows(n, n)));
         let (d_modal, v_modal) = signal.tip(0.0);
-        let signal = signal.with_floor(2.0 * (d_modal - d_state).abs());
+        // A segment that starts on the wrong side of the surface starts at a switch whose
+        // state carries the previous region's error (its flow good to κε, κ up to 1e8 for
+        // the stiffest stops): that offset is uncertainty too, not a crossing.
+        let wrong_side = if flow.region() == Region::Free {
+            (d_state - gap).max(0.0)
+        } else {
+            (gap - d_state).max(0.0)
+        };
+        let floor = (2.0 * (d_modal - d_state).abs()).max(2.0 * wrong_side);
+        let signal = signal.with_floor(floor);
         Self {
             flow,
             phase0,
@@ -458,6 +475,8 @@ impl Simulator {
         let mut clock = start;
         let mut x = x0.clone();
         let mut region = self.initial_region(&x, &clock);
+        // entries into contact since the start of the current forcing period
+        let (mut counted_cycle, mut contacts) = (clock.cycles, 0u64);
         observer.begin(self, &clock, &x);
         while clock.before(&end) {
             let flow = self.flow(region);
@@ -501,15 +520,22 @@ impl Simulator {
                     let (_, v) = seg.signal.tip(s);
                     // A touch whose normal velocity vanishes to round-off (relative to the
                     // tip velocity scale, plus the representation's error) does not enter
-                    // the other region.
-                    let vscale = 1e-13 * seg.signal.velocity_bound(s) + seg.velocity_floor;
+                    // the other region. The relative round-off is the flow's own: its modal
+                    // coefficients are good to about κε (κ the eigenvectors' condition), and
+                    // so is a velocity summed from them (κ reaches 1e7–1e8 for a stop of
+                    // 1e11–1e12k₁, where 1e-13 alone mislabelled tangencies as entries
+                    // with the wrong sign).
+                    let relative = 1e-13_f64.max(64.0 * f64::EPSILON * flow.condition());
+                    let vscale = relative * seg.signal.velocity_bound(s) + seg.velocity_floor;
                     let grazing = touch || v.abs() <= vscale;
                     let entering = region == Region::Free;
                     if !grazing && (entering != (v > 0.0)) {
                         return Err(Error::Invariant(format!(
-                            "at t = {:.17e} the tip {} contact with velocity {v:e}",
+                            "at t = {:.17e} the tip {} contact with velocity {v:e} (its round-off \
+                             scale {vscale:.1e}, eigenvector condition {:.1e})",
                             clock.time(),
-                            if entering { "entered" } else { "left" }
+                            if entering { "entered" } else { "left" },
+                            flow.condition()
                         )));
                     }
                     observer.event(&EventView {
@@ -519,6 +545,15 @@ impl Simulator {
                         tip_velocity: v,
                         state: &x,
                     });
+                    if clock.cycles != counted_cycle {
+                        (counted_cycle, contacts) = (clock.cycles, 0);
+                    }
+                    if entering && !grazing {
+                        contacts += 1;
+                        if contacts > MAX_CONTACTS_PER_PERIOD {
+                            return Err(self.chatter_refusal(&clock));
+                        }
+                    }
                     if !grazing {
                         region = match region {
                             Region::Free => Region::Contact,
@@ -540,6 +575,26 @@ impl Simulator {
             clock,
             stats,
         })
+    }
+
+    /// Why a run that chatters beyond [`MAX_CONTACTS_PER_PERIOD`] stops, with the contact
+    /// frequency that sets the count and what to change.
+    fn chatter_refusal(&self, clock: &Clock) -> Error {
+        let contact = self.flow(Region::Contact);
+        let fastest = contact
+            .eigenvalues()
+            .iter()
+            .map(|l| l.im.abs())
+            .fold(0.0, f64::max);
+        Error::Unsupported(format!(
+            "more than {MAX_CONTACTS_PER_PERIOD} entries into contact in the forcing period \
+             ending near t = {:.6e}: the tip chatters on the stop at its contact frequency \
+             ({:.1e} oscillations per forcing period), and each bounce is an event to locate. \
+             Ways out: more modes (their material damping quiets the contact vibration), a \
+             softer stop, or the rigid-impact model (--model rigid)",
+            clock.time(),
+            fastest * self.period() / (2.0 * std::f64::consts::PI),
+        ))
     }
 
     /// The region a state starts in ([`GalerkinModel::starting_region`]).
