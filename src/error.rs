@@ -73,10 +73,18 @@ pub struct ParameterError {
 
 impl ParameterError {
     /// Builds the error for `name`, given `value`, allowed `allowed`.
+    /// A long plain number in `value` (an f64's Display of 1e300 has 301 digits) is
+    /// written as [`number`] writes it.
     pub fn new(name: &str, value: impl std::fmt::Display, allowed: &str) -> Self {
+        let mut value = value.to_string();
+        if value.len() > 24 {
+            if let Ok(x) = value.parse::<f64>() {
+                value = number(x);
+            }
+        }
         Self {
             name: name.to_string(),
-            value: value.to_string(),
+            value,
             allowed: allowed.to_string(),
         }
     }

@@ -35,6 +35,16 @@ fn unknown_scene_is_rejected_with_the_list_of_scenes() {
 }
 
 #[test]
+fn missing_arguments_are_named_on_the_one_line() {
+    // clap lists them on the lines after its first; the one-line error kept only
+    // "...were not provided:" with nothing after it
+    let (code, _, err) = cantilever(&["orbit", "--modes", "3", "--zeta1", "0.01", "--omega", "2"]);
+    assert_eq!(code, 2);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("--periods"), "{err}");
+}
+
+#[test]
 fn zero_modes_is_rejected() {
     let (code, _, err) = cantilever(&["modes", "--modes", "0", "--stop-stiffness", "1"]);
     assert_eq!(code, 2);

@@ -165,6 +165,44 @@ fn target(path: &Path) -> Target {
     }
 }
 
+/// Reads a text file of at most `max_bytes` (a key-number file, a state, a shard), so a
+/// wrong path — `/dev/zero`, a disk image — is refused after `max_bytes`, not after
+/// memory runs out. `flag` names the option and `what` the file expected, in the error.
+pub fn read_capped(
+    flag: &str,
+    path: &Path,
+    max_bytes: u64,
+    what: &str,
+) -> Result<String, ParameterError> {
+    use std::io::Read;
+    let bad = |why: String| ParameterError::new(flag, path.display(), &why);
+    if path.is_dir() {
+        return Err(bad(format!("{what} (it is a directory)")));
+    }
+    let file = std::fs::File::open(path).map_err(|e| bad(format!("{what}, readable ({e})")))?;
+    let mut text = String::new();
+    file.take(max_bytes + 1)
+        .read_to_string(&mut text)
+        .map_err(|e| bad(format!("{what}, as UTF-8 text ({e})")))?;
+    if text.len() as u64 > max_bytes {
+        return Err(bad(format!(
+            "{what} of at most {} (it is longer)",
+            human_bytes(max_bytes)
+        )));
+    }
+    Ok(text)
+}
+
+/// A byte count in the largest binary unit that keeps it whole or nearly.
+fn human_bytes(n: u64) -> String {
+    match n {
+        n if n >= 1 << 30 => format!("{} GiB", n >> 30),
+        n if n >= 1 << 20 => format!("{} MiB", n >> 20),
+        n if n >= 1 << 10 => format!("{} KiB", n >> 10),
+        n => format!("{n} bytes"),
+    }
+}
+
 /// Checks, before any work, that `path` can be written as a file (see the module doc):
 /// refused when it is a directory, a block device or a socket, or when its directory does
 /// not exist or does not accept a file. `flag` names the option in the error.

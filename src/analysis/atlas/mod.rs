@@ -350,6 +350,93 @@ pub struct Partial {
     pub rows: Vec<Row>,
 }
 
+impl Partial {
+    /// Checks a shard read from a file against what [`compute_shard`] can produce: valid
+    /// parameters, its rows among the shard's, each row's k as the grid gives it, and every
+    /// cell consistent (periods 1 … max_period, spectral radii of stable orbits in [0, 1),
+    /// start indices among the cell's starts, `from_rest` naming one of its attractors,
+    /// checks only on checked cells). The error names the row, the column and the field.
+    pub fn validate(&self) -> Result<(), ParameterError> {
+        let p = &self.params;
+        p.validate()?;
+        let shard = format!("{}/{}", self.shard.index, self.shard.count);
+        if self.shard.count == 0 || self.shard.index >= self.shard.count {
+            return Err(ParameterError::new(
+                "atlas shard",
+                &shard,
+                "I/N with 0 ≤ I < N",
+            ));
+        }
+        let bad = |at: String, what: &str| {
+            Err(ParameterError::new(
+                "atlas shard",
+                format!("{at} of shard {shard}"),
+                &format!("{what}, as `cantilever atlas` writes it"),
+            ))
+        };
+        for r in &self.rows {
+            let i = r.index;
+            if i >= p.k_points || i % self.shard.count != self.shard.index {
+                return bad(format!("row {i}"), "a row of this shard");
+            }
+            if r.k_over_k1 != p.k_over_k1(i) {
+                return bad(format!("k/k₁ = {} of row {i}", r.k_over_k1), "the grid's k");
+            }
+            if r.cells.len() != p.omega_points {
+                return bad(
+                    format!("row {i} ({} cells)", r.cells.len()),
+                    "omega_points cells",
+                );
+            }
+            for (j, c) in r.cells.iter().enumerate() {
+                let at = |field: &str| format!("{field} of row {i}, column {j}");
+                for a in &c.attractors {
+                    if !(1..=p.max_period).contains(&a.period_m) {
+                        return bad(at("period_m"), "1 ≤ m ≤ max_period");
+                    }
+                    if a.impacts_n as u64 > a.period_m * crate::engine::sim::MAX_CONTACTS_PER_PERIOD
+                    {
+                        return bad(
+                            at("impacts_n"),
+                            "at most the simulator's contacts per period",
+                        );
+                    }
+                    if !(a.spectral_radius >= 0.0 && a.spectral_radius < 1.0) {
+                        return bad(at("spectral_radius"), "a stable orbit's: 0 ≤ ρ < 1");
+                    }
+                    if a.starts.iter().any(|&s| s >= p.starts) {
+                        return bad(at("starts"), "start indices below `starts`");
+                    }
+                }
+                if c.from_rest.is_some_and(|k| k >= c.attractors.len()) {
+                    return bad(at("from_rest"), "the index of one of the cell's attractors");
+                }
+                if c.unsettled_starts > p.starts {
+                    return bad(at("unsettled_starts"), "at most `starts`");
+                }
+                let checked = i.is_multiple_of(p.check_stride) && j.is_multiple_of(p.check_stride);
+                match &c.check {
+                    Some(_) if !checked => return bad(at("check"), "none on an unchecked cell"),
+                    None if checked => return bad(at("check"), "a check on a checked cell"),
+                    Some(ch) => {
+                        if ch
+                            .from_rest
+                            .is_some_and(|(m, _)| !(1..=p.max_period).contains(&m))
+                        {
+                            return bad(at("check.from_rest"), "1 ≤ m ≤ max_period");
+                        }
+                        if ch.missed > p.check_starts {
+                            return bad(at("check.missed"), "at most `check_starts`");
+                        }
+                    }
+                    None => {}
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
 /// The `format` of a [`Partial`].
 pub const PARTIAL_FORMAT: &str = "impacting-cantilever atlas shard v1";
 
@@ -404,6 +491,12 @@ pub fn merge(parts: Vec<Partial>) -> Result<AtlasData, Error> {
         return refuse("none".into());
     };
     let (params, first_build) = (first.params.clone(), first.build.clone());
+    // a hand-edited file is checked against the atlas's own invariants before anything
+    // is allocated from it (k_points = 1e12 would ask for terabytes)
+    params.validate()?;
+    for part in &parts {
+        part.validate()?;
+    }
     let mut rows: Vec<Option<Row>> = vec![None; params.k_points];
     for part in parts {
         if part.format != PARTIAL_FORMAT {

@@ -94,8 +94,15 @@ pub fn merge(files: &[PathBuf], out: &Path) -> Result<(), Error> {
                 &format!("an output of `cantilever atlas` ({why})"),
             )
         };
-        let text = std::fs::read_to_string(f).map_err(|e| bad(e.to_string()))?;
-        let part: Partial = serde_json::from_str(&text).map_err(|e| bad(e.to_string()))?;
+        // Parsed as it is read, so a file that is not JSON (`/dev/zero`) fails at its first
+        // byte; the book's 128 × 128 atlas is ~7 MiB, the largest legal one (4096²) a few
+        // GiB, so the cap only bounds a file that is JSON but endless.
+        let file = std::fs::File::open(f).map_err(|e| bad(e.to_string()))?;
+        if file.metadata().is_ok_and(|m| m.is_dir()) {
+            return Err(bad("it is a directory".into()).into());
+        }
+        let reader = std::io::BufReader::new(std::io::Read::take(file, 8 << 30));
+        let part: Partial = serde_json::from_reader(reader).map_err(|e| bad(e.to_string()))?;
         parts.push(part);
     }
     let data = atlas::merge(parts)?;

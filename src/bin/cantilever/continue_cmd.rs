@@ -29,10 +29,12 @@ pub struct ContinueArgs {
     /// start²/to (the same factor the other way).
     #[arg(long, allow_hyphen_values = true)]
     pub to: f64,
-    /// Only towards --to.
+    /// Only towards --to, one branch: its period doublings are detected and reported but
+    /// not followed (the doubled branches are traced without --one-way).
     #[arg(long)]
     pub one_way: bool,
-    /// Largest step in ln p (also the spacing of the points), 1e-4 to 0.2.
+    /// Largest step in ln p (also the spacing of the points), 1e-4 to 0.2. A branch
+    /// stops after 4000 points.
     #[arg(long, allow_hyphen_values = true, default_value_t = 0.02)]
     pub max_step: f64,
     /// Follow period doublings up to this period (1 = no branch switching), 1 to 64.
@@ -63,7 +65,7 @@ pub fn run(args: &ContinueArgs) -> Result<Report, Error> {
     if !(args.to.is_finite() && args.to > 0.0 && args.to != p0) {
         return Err(ParameterError::new(
             "--to",
-            args.to,
+            impacting_cantilever::error::number(args.to),
             "a finite value > 0 other than the start value",
         )
         .into());
@@ -73,6 +75,21 @@ pub fn run(args: &ContinueArgs) -> Result<Report, Error> {
     }
     if !(1..=64).contains(&args.doubling_up_to) {
         return Err(ParameterError::new("--doubling-up-to", args.doubling_up_to, "1 to 64").into());
+    }
+    // --to must be a value the model accepts (k ≤ 1e12, say): refused here, not found
+    // out as a corrector failure at the end of the branch
+    let mut at_to = a.clone();
+    match args.parameter {
+        ParameterArg::StopStiffness => at_to.stop_stiffness = args.to,
+        ParameterArg::Omega => at_to.omega = args.to,
+    }
+    if let Err(e) = simulate::model(&at_to) {
+        return Err(ParameterError::new(
+            "--to",
+            impacting_cantilever::error::number(args.to),
+            &format!("a value the model accepts ({e})"),
+        )
+        .into());
     }
     // the start orbit, found as `cantilever orbit` finds it (validates the model options)
     let start = orbit::run(&args.orbit)?;

@@ -8,7 +8,6 @@
 
 use impacting_cantilever::error::ParameterError;
 use impacting_cantilever::results::diff::{self, SceneKeys};
-use std::io::Read;
 use std::path::Path;
 
 /// Key-number files are a few kB; anything over this is not one (and `/dev/zero` ends).
@@ -16,19 +15,7 @@ const MAX_BYTES: u64 = 64 << 20;
 
 /// Reads a file of at most [`MAX_BYTES`].
 fn read_capped(which: &str, path: &Path) -> Result<String, ParameterError> {
-    let bad = |why: String| ParameterError::new(which, path.display(), &why);
-    let file = std::fs::File::open(path).map_err(|e| bad(format!("a readable file ({e})")))?;
-    let mut text = String::new();
-    file.take(MAX_BYTES + 1)
-        .read_to_string(&mut text)
-        .map_err(|e| bad(format!("a UTF-8 text file ({e})")))?;
-    if text.len() as u64 > MAX_BYTES {
-        return Err(bad(format!(
-            "a key-number file of at most {} MiB",
-            MAX_BYTES >> 20
-        )));
-    }
-    Ok(text)
+    impacting_cantilever::results::files::read_capped(which, path, MAX_BYTES, "a key-number file")
 }
 
 /// One file: a snapshot (`*.snap`) or a `key_numbers.json` document.

@@ -229,6 +229,20 @@ fn emit(text: &str) {
     }
 }
 
+/// Writes to stdout through `write` (buffered), as [`emit`] does: a closed pipe ends the
+/// program quietly, any other failure with exit 1.
+fn emit_with(write: impl FnOnce(&mut dyn std::io::Write) -> std::io::Result<()>) {
+    use std::io::Write;
+    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+    if let Err(e) = write(&mut out).and_then(|()| out.flush()) {
+        if e.kind() == std::io::ErrorKind::BrokenPipe {
+            std::process::exit(0);
+        }
+        let _ = writeln!(std::io::stderr(), "error: cannot write to stdout: {e}");
+        std::process::exit(1);
+    }
+}
+
 /// A command's JSON document with the schema version and the command's name first (see
 /// [`scene::SCHEMA_VERSION`]).
 fn versioned(command: &str, value: serde_json::Value) -> serde_json::Value {
@@ -298,9 +312,17 @@ fn main() -> ExitCode {
                 let _ = e.print();
                 return ExitCode::from(2);
             }
-            // one line, naming the flag (clap's first line does)
+            // one line, naming the flag: clap's first line does, except for missing
+            // arguments, which it lists on the lines after ("...were not provided:")
             let text = e.to_string();
-            errln!("{}", text.lines().next().unwrap_or("error: bad arguments"));
+            let mut lines = text.lines().map(str::trim).filter(|l| !l.is_empty());
+            let first = lines.next().unwrap_or("error: bad arguments");
+            if first.ends_with(':') {
+                let listed: Vec<&str> = lines.take_while(|l| l.starts_with('-')).collect();
+                errln!("{first} {}", listed.join(", "));
+            } else {
+                errln!("{first}");
+            }
             return ExitCode::from(2);
         }
     };
@@ -372,7 +394,11 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::Simulate { args, json } => {
             let report = simulate::run(&args)?;
             if json {
-                outln!("{}", json_text("simulate", simulate::to_json(&report)));
+                let head = versioned("simulate", simulate::to_json(&report));
+                emit_with(|out| {
+                    simulate::write_json(&report, head, out).map_err(std::io::Error::from)?;
+                    out.write_all(b"\n")
+                });
             } else {
                 emit(&simulate::to_text(&report));
             }

@@ -10,7 +10,7 @@
 mod output;
 mod run;
 
-pub use output::{to_json, to_text};
+pub use output::{to_json, to_text, write_json};
 pub use run::run;
 
 use impacting_cantilever::error::{self, ParameterError};
@@ -24,6 +24,9 @@ use std::path::PathBuf;
 
 /// Largest number of discarded periods (at ~10 µs a period for N = 10, about 20 minutes).
 pub const MAX_PERIODS: u64 = 100_000_000;
+/// Most numbers in a dense output (~250 MB of CSV, held in memory before it is written).
+const MAX_DENSE_NUMBERS: u64 = 10_000_000;
+
 /// Largest number of recorded periods (their events and the strobe are kept in memory).
 pub const MAX_RECORD: u64 = 100_000;
 /// Supported |d₀| (units of the free tip amplitude at resonance): beyond it the stop is
@@ -214,6 +217,29 @@ pub fn validate(args: &SimulateArgs) -> Result<(), ParameterError> {
     }
     error::count_in_range("--max-period", args.max_period, 1000)?;
     error::count_in_range("--dense-per-period", args.dense_per_period, 10_000)?;
+    if args.dense.is_some() {
+        // rows of t, region, tip, tip velocity and the 2N state, ~25 bytes a number in the
+        // CSV: refused upfront with the projected size rather than run out of memory
+        let rows = (args.record * args.dense_per_period as u64).max(1) + 1;
+        let numbers = rows.saturating_mul(4 + 2 * args.modes as u64);
+        if numbers > MAX_DENSE_NUMBERS {
+            return Err(ParameterError::new(
+                "--dense",
+                format!(
+                    "{rows} rows of {} numbers (~{} MB of CSV) for --record {} × --dense-per-period {}",
+                    4 + 2 * args.modes,
+                    numbers * 25 / 1_000_000,
+                    args.record,
+                    args.dense_per_period
+                ),
+                &format!(
+                    "at most {MAX_DENSE_NUMBERS} numbers (~250 MB): fewer recorded periods or \
+                     samples per period, or the window in pieces (--final-state, then \
+                     --initial-state)"
+                ),
+            ));
+        }
+    }
     if !(args.periodicity_tolerance > 0.0 && args.periodicity_tolerance < 1.0) {
         return Err(ParameterError::new(
             "--periodicity-tolerance",

@@ -39,8 +39,8 @@ impl Observer for Ticker<'_> {
     }
 }
 
-/// One event of the recorded window.
-#[derive(Debug, Clone)]
+/// One event of the recorded window (serialized as is into the JSON report's `events`).
+#[derive(Debug, Clone, serde::Serialize)]
 pub struct EventOut {
     /// t, the time of the event (non-dimensional beam time).
     pub time: f64,
@@ -55,10 +55,12 @@ pub struct EventOut {
     /// Tip velocity at the event (rigid: before the impact).
     pub tip_velocity: f64,
     /// Rigid: tip velocity after the impact.
+    #[serde(rename = "outgoing_tip_velocity")]
     pub outgoing: Option<f64>,
     /// Modal velocities η̇ at the event (rigid: before the impact).
     pub modal_velocities: Vec<f64>,
     /// Rigid: modal velocities after the impact.
+    #[serde(rename = "modal_velocities_after")]
     pub modal_after: Option<Vec<f64>>,
 }
 
@@ -88,6 +90,8 @@ pub struct Report {
     pub max_tip: Option<TipMaximum>,
     /// Relative energy imbalance of the whole run (compliant).
     pub energy_imbalance: Option<f64>,
+    /// What round-off explains of it ([`EnergyBudget::round_off_bound`]).
+    pub energy_imbalance_bound: Option<f64>,
     /// The larger condition of the two region flows (the flow is good to about this × ε).
     pub condition: f64,
     /// How the run ended (rigid: completed, chatter, impact limit).
@@ -202,6 +206,7 @@ fn compliant(args: &SimulateArgs, setup: Setup, bars: &Bars) -> Result<Report, E
     let mut energy = Energy::default();
     let end = sim.run_from(&x, clock, args.periods, &mut (&mut energy, &mut ticker))?;
     add(&energy.budget);
+    let mut segments = end.stats.segments;
     (x, clock) = (end.state, end.clock);
     // the recorded window
     let (mut log, mut max_tip) = (EventLog::default(), TipMax::default());
@@ -238,6 +243,7 @@ fn compliant(args: &SimulateArgs, setup: Setup, bars: &Bars) -> Result<Report, E
         )?
     };
     add(&energy.budget);
+    segments += end.stats.segments;
     let strobe_states = strobe.states();
     (x, clock) = (end.state, end.clock);
     drop(task);
@@ -259,6 +265,8 @@ fn compliant(args: &SimulateArgs, setup: Setup, bars: &Bars) -> Result<Report, E
         max_period_searched,
         max_tip: max_tip.maximum,
         energy_imbalance: budget.map(|b| b.relative_imbalance()),
+        energy_imbalance_bound: budget
+            .map(|_| EnergyBudget::round_off_bound(sim.condition(), segments)),
         condition: sim.condition(),
         outcome: "completed".into(),
         final_clock: Clock::at_cycle(period, last_cycle),
@@ -413,6 +421,7 @@ fn rigid(args: &SimulateArgs, setup: Setup, bars: &Bars) -> Result<Report, Error
         max_period_searched,
         max_tip: None,
         energy_imbalance: None,
+        energy_imbalance_bound: None,
         condition,
         outcome: outcome_text,
         final_clock,
