@@ -27,7 +27,7 @@
 
 use crate::analysis::shooting::{Monodromy, PeriodicOrbit, Section};
 use crate::base::newton::{self, Evaluation};
-use crate::engine::flow::eigen_balanced;
+use crate::engine::flow::eigenvalues_balanced;
 use crate::engine::map::PeriodMap;
 use crate::engine::sim::{Clock, Events, Simulator};
 use crate::error::Error;
@@ -175,7 +175,7 @@ pub fn shoot(
         max_iterations,
         "shooting on the impact section",
     )?;
-    let (values, _) = eigen_balanced(&done.at.extra)?;
+    let values = eigenvalues_balanced(&done.at.extra)?;
     let mut values: Vec<_> = values.into_iter().collect();
     values.sort_by(|a, b| b.norm().total_cmp(&a.norm()));
     // the flow direction's eigenvalue 0 (to round-off) is not a multiplier: the smallest

