@@ -255,7 +255,31 @@ fn published_snapshots() -> String {
     out
 }
 
+/// `key = "value"` lines of the `[package.metadata.citation]` table of Cargo.toml (the
+/// project's citation metadata: title, release date), as `CANTILEVER_CITATION_*` variables.
+fn citation_metadata() {
+    let toml = std::fs::read_to_string("Cargo.toml").unwrap_or_default();
+    let mut inside = false;
+    let mut found = BTreeMap::new();
+    for line in toml.lines() {
+        let line = line.trim();
+        if line.starts_with('[') {
+            inside = line == "[package.metadata.citation]";
+            continue;
+        }
+        if let (true, Some((key, value))) = (inside, line.split_once('=')) {
+            let value = value.trim().trim_matches('"');
+            found.insert(key.trim().to_string(), value.to_string());
+        }
+    }
+    for (key, var) in [("title", "TITLE"), ("date-released", "DATE_RELEASED")] {
+        let value = found.get(key).cloned().unwrap_or_default();
+        println!("cargo:rustc-env=CANTILEVER_CITATION_{var}={value}");
+    }
+}
+
 fn main() {
+    citation_metadata();
     let commit = run("git", &["rev-parse", "HEAD"]).unwrap_or_else(|| "unknown".into());
     // dirty: tracked files changed (untracked ones, e.g. generated book pages, do not count)
     let dirty = match run("git", &["status", "--porcelain", "--untracked-files=no"]) {

@@ -1,7 +1,8 @@
 //! Issue targets: one converged N = 10 orbit with its multipliers at Figure 4's parameters
 //! in ≤ 0.5 ms from a start within the basin (single thread); the four continued Figure 5
 //! branch sets (N = 1, 2, 3, 10, seeded from the brute-force diagram) in ≤ 5 s on 2 cores;
-//! the book's 128 × 128 N = 10 atlas in ≤ 120 s on 2 cores (ten samples: about 11 minutes).
+//! the book's 128 × 128 atlas at stiffness-matched N in ≤ 120 s on 2 cores (ten samples:
+//! about 20 minutes).
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use impacting_cantilever::analysis::shooting;
@@ -49,7 +50,7 @@ fn atlas(c: &mut Criterion) {
     let p = impacting_cantilever::analysis::atlas::AtlasParams::book();
     let mut g = c.benchmark_group("atlas");
     g.sample_size(10);
-    g.bench_function("128 x 128 atlas, N = 10 (all threads)", |b| {
+    g.bench_function("128 x 128 atlas, N matched to k (all threads)", |b| {
         b.iter(|| impacting_cantilever::analysis::atlas::compute(black_box(&p), &|| {}).unwrap())
     });
     g.finish();

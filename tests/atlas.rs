@@ -87,7 +87,7 @@ fn orbits_from_rest_and_coexistence_agree_with_brute_force_transients() {
     for r in &d.rows {
         for (j, c) in r.cells.iter().enumerate() {
             let sim = Simulator::new(
-                p.model(p.modes, r.k_over_k1, d.omega_over_w1[j])
+                p.model(r.modes, r.k_over_k1, d.omega_over_w1[j])
                     .unwrap()
                     .model()
                     .unwrap(),
@@ -166,7 +166,8 @@ fn continued_orbits_are_where_a_slow_frequency_sweep_settles() {
     let mut previous: Vec<atlas::cell::Found> = Vec::new();
     let mut checked = 0;
     for (j, &w) in omegas.iter().enumerate() {
-        let sim = Simulator::new(p.model(p.modes, 100.0, w).unwrap().model().unwrap()).unwrap();
+        // (N = 10, as the book's atlas used at this k before N was matched to k)
+        let sim = Simulator::new(p.model(10, 100.0, w).unwrap().model().unwrap()).unwrap();
         let search = CellSearch {
             sim: &sim,
             starts: p.starts,

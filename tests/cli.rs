@@ -272,14 +272,16 @@ fn a_closed_pipe_ends_quietly_instead_of_panicking() {
 fn cite_prints_the_number_its_uncertainty_provenance_and_both_citations() {
     // fig3-d is cheap at book resolution; its probe of the collocation law at s = 1 is the
     // exact identity φ₁(1) = 2
-    let (code, out, err) = cantilever(&["cite", "fig3-d", "phi1(1)"]);
+    // (recomputed: the published path is tested with fig6 below)
+    let (code, out, err) = cantilever(&["cite", "fig3-d", "phi1(1)", "--recompute"]);
     assert_eq!(code, 0, "{err}");
     let first = out.lines().next().unwrap();
-    assert!(first.starts_with("phi1(1) = 2.0000000e0 ± "), "{first}");
+    assert!(first.starts_with("phi1(1) = 2.0000000 ± "), "{first}");
     for needed in [
         "uncertainty  ",
         "parameters   {",
         "method       ",
+        "verdict      ",
         "computed by  impacting-cantilever ",
         "full resolution",
         "@software{impacting_cantilever",
@@ -287,7 +289,7 @@ fn cite_prints_the_number_its_uncertainty_provenance_and_both_citations() {
     ] {
         assert!(out.contains(needed), "missing {needed:?} in\n{out}");
     }
-    let (code, json, _) = cantilever(&["cite", "fig3-d", "phi1(1)", "--json"]);
+    let (code, json, _) = cantilever(&["cite", "fig3-d", "phi1(1)", "--json", "--recompute"]);
     assert_eq!(code, 0);
     let v: serde_json::Value = serde_json::from_str(&json).unwrap();
     let keys = v["key_numbers"].as_object().unwrap();
@@ -317,17 +319,48 @@ fn cite_rejects_an_unknown_key_naming_the_nearest_ones() {
 }
 
 #[test]
-fn citation_cff_matches_the_crate_and_the_cite_command() {
+fn citation_cff_is_generated_from_the_one_source() {
     use impacting_cantilever::results::citation;
-    let cff =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/CITATION.cff")).unwrap();
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/CITATION.cff");
+    let generated = citation::citation_cff();
+    if std::env::var_os("CANTILEVER_BLESS").is_some() {
+        std::fs::write(path, &generated).unwrap();
+    }
+    let cff = std::fs::read_to_string(path).unwrap();
+    assert_eq!(
+        cff, generated,
+        "CITATION.cff differs from Cargo.toml's metadata: rerun with CANTILEVER_BLESS=1"
+    );
     assert!(cff.contains(&format!("\nversion: {}\n", env!("CARGO_PKG_VERSION"))));
-    // YAML's folded scalars: compare with whitespace collapsed
-    let flat = cff.split_whitespace().collect::<Vec<_>>().join(" ");
-    assert!(flat.contains(citation::SOFTWARE_TITLE), "title");
-    assert!(flat.contains(&format!("- name: {}", citation::SOFTWARE_AUTHORS)));
-    assert!(citation::PAPER_PLAIN.contains("doi:10.1098/rsta.2012.0434"));
+    assert!(cff.contains("preferred-citation:") && cff.contains("date-released: "));
     assert!(cff.contains("doi: 10.1098/rsta.2012.0434"));
+    assert!(citation::PAPER_PLAIN.contains("doi:10.1098/rsta.2012.0434"));
+}
+
+#[test]
+fn cite_prints_a_sentence_to_paste_from_the_published_numbers() {
+    let (code, out, err) = cantilever(&["cite", "fig6", "b r_E"]);
+    assert_eq!(code, 0, "{err}");
+    let first = out.lines().next().unwrap();
+    // decimal, ± one figure, the paper's figure, version and commit
+    assert!(first.starts_with("b r_E = 0."), "{first}");
+    let number = first.split(" (").next().unwrap();
+    assert!(
+        number.contains(" ± 0.0") && !number.contains('e'),
+        "{first}"
+    );
+    assert!(first.contains("Fig 6") && first.contains("impacting-cantilever 0.1.0, commit "));
+    assert!(
+        out.contains("--recompute") && out.contains("published numbers"),
+        "{out}"
+    );
+    // parameters as typed, not their last binary digit
+    assert!(!out.contains("00000000000"), "{out}");
+    let (code, out, _) = cantilever(&["cite", "fig6", "b r_E", "--json"]);
+    assert_eq!(code, 0);
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["source"], "published");
+    assert!(v["sentences"][0].as_str().unwrap().starts_with("b r_E = "));
 }
 
 #[test]

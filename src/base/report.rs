@@ -37,12 +37,47 @@ impl Uncertainty {
 pub struct Cited {
     /// The value, rounded to `digits` significant figures.
     pub value: f64,
+    /// The value as computed, before rounding (read back from a file: the printed value).
+    pub computed: f64,
     /// Significant figures kept (never more than the uncertainty supports).
     pub digits: usize,
-    /// The uncertainty.
+    /// The uncertainty of `value`: the method's, plus the rounding to `digits` when that
+    /// is larger (so |value − computed| ≤ uncertainty always holds).
     pub uncertainty: Uncertainty,
     /// The unit or scale ("" for a pure number).
     pub unit: String,
+}
+
+impl Cited {
+    /// `computed` to `digits` figures (fewer if `uncertainty` does not support them), its
+    /// uncertainty widened by the rounding when the rounding is the larger: a printed
+    /// value never lies outside its own uncertainty.
+    pub fn new(computed: f64, digits: usize, uncertainty: Uncertainty, unit: &str) -> Self {
+        let digits = digits
+            .min(supported_digits(computed, uncertainty.value))
+            .max(1);
+        let value = round_sig(computed, digits);
+        let rounding = (value - computed).abs();
+        let uncertainty = if rounding > uncertainty.value {
+            Uncertainty::new(
+                uncertainty.value + rounding,
+                format!(
+                    "the rounding to {digits} figures (the computed value is good to {}: {})",
+                    format_sig(uncertainty.value, 1),
+                    uncertainty.basis,
+                ),
+            )
+        } else {
+            uncertainty
+        };
+        Self {
+            value,
+            computed,
+            digits,
+            uncertainty,
+            unit: unit.to_string(),
+        }
+    }
 }
 
 /// One key number.
@@ -96,6 +131,19 @@ pub fn supported_digits(x: f64, u: f64) -> usize {
     d.clamp(1.0, 15.0) as usize
 }
 
+/// An uncertainty to one significant figure, rounded *up* (a printed ± never claims
+/// more than is known): 2.1e-12 → 3e-12, 9.96e-5 → 1e-4.
+pub fn round_up_one_figure(u: f64) -> f64 {
+    if u <= 0.0 || !u.is_finite() {
+        return u;
+    }
+    let e = u.log10().floor();
+    let scale = 10f64.powf(e);
+    // (a mantissa within round-off of an integer is that integer, not the next one)
+    let m = (u / scale * (1.0 - 4.0 * f64::EPSILON)).ceil();
+    format_sig(m * scale, 1).parse().unwrap_or(u)
+}
+
 /// x to `digits` significant figures for prose: plain for moderate magnitudes, a × 10ⁿ
 /// beyond.
 pub fn pretty(x: f64, digits: usize) -> String {
@@ -107,6 +155,10 @@ pub fn pretty(x: f64, digits: usize) -> String {
         let decimals = (digits as i32 - 1 - e).max(0) as usize;
         return format!("{x:.decimals$}");
     }
+    // the exponent of the *rounded* value: 9.96e-5 to one figure is 1 × 10⁻⁴, not
+    // "10 × 10⁻⁵"
+    let x = round_sig(x, digits.max(1));
+    let e = x.abs().log10().floor() as i32;
     let mantissa = x / 10f64.powi(e);
     let superscript: String = e
         .to_string()
@@ -155,7 +207,7 @@ impl KeyValue {
                     format!(
                         "{} ± {}{unit}",
                         pretty(c.value, c.digits),
-                        pretty(c.uncertainty.value, 1)
+                        pretty(round_up_one_figure(c.uncertainty.value), 1)
                     )
                 } else {
                     format!("{}{unit}", pretty(c.value, c.digits))
@@ -172,7 +224,8 @@ impl std::fmt::Display for KeyValue {
             KeyValue::Float(c) => {
                 write!(f, "{}", format_sig(c.value, c.digits))?;
                 if c.uncertainty.value > 0.0 {
-                    write!(f, " ± {}", format_sig(c.uncertainty.value, 1))?;
+                    let u = round_up_one_figure(c.uncertainty.value);
+                    write!(f, " ± {}", format_sig(u, 1))?;
                 } else {
                     write!(f, " (exact)")?;
                 }
@@ -189,7 +242,7 @@ impl std::fmt::Display for KeyValue {
                         format!(
                             "{} ± {}",
                             format_sig(c.value, c.digits),
-                            format_sig(c.uncertainty.value, 1)
+                            format_sig(round_up_one_figure(c.uncertainty.value), 1)
                         )
                     })
                     .collect();
@@ -202,6 +255,9 @@ impl std::fmt::Display for KeyValue {
         }
     }
 }
+
+/// The indent of a snapshot line that gives the basis of the uncertainty above it.
+const SNAPSHOT_BASIS_INDENT: &str = "    ";
 
 /// An ordered list of named key numbers.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -218,17 +274,9 @@ impl KeyNumbers {
         uncertainty: Uncertainty,
         unit: &str,
     ) {
-        let digits = digits
-            .min(supported_digits(value, uncertainty.value))
-            .max(1);
         self.0.push((
             name.into(),
-            KeyValue::Float(Cited {
-                value: round_sig(value, digits),
-                digits,
-                uncertainty,
-                unit: unit.to_string(),
-            }),
+            KeyValue::Float(Cited::new(value, digits, uncertainty, unit)),
         ));
     }
 
@@ -265,15 +313,7 @@ impl KeyNumbers {
     ) {
         let cited = values
             .iter()
-            .map(|&(value, u)| {
-                let d = digits.min(supported_digits(value, u)).max(1);
-                Cited {
-                    value: round_sig(value, d),
-                    digits: d,
-                    uncertainty: Uncertainty::new(u, basis),
-                    unit: unit.to_string(),
-                }
-            })
+            .map(|&(value, u)| Cited::new(value, digits, Uncertainty::new(u, basis), unit))
             .collect();
         self.0.push((name.into(), KeyValue::Series(cited)));
     }
@@ -294,9 +334,26 @@ impl KeyNumbers {
     }
 
     /// `name = value ± uncertainty unit` lines: the snapshot format (the uncertainty to one
-    /// figure, so a last-digit change of an estimate does not show).
+    /// figure, rounded up, so a last-digit change of an estimate does not show), each
+    /// uncertain float followed by an indented line `    (how the uncertainty was
+    /// obtained)` — so that the committed snapshots carry all a citation needs.
     pub fn to_snapshot(&self) -> String {
-        self.0.iter().map(|(k, v)| format!("{k} = {v}\n")).collect()
+        let mut out = String::new();
+        for (k, v) in &self.0 {
+            out += &format!("{k} = {v}\n");
+            let basis = match v {
+                KeyValue::Float(c) if c.uncertainty.value > 0.0 => Some(&c.uncertainty.basis),
+                KeyValue::Series(s) => s
+                    .iter()
+                    .find(|c| c.uncertainty.value > 0.0)
+                    .map(|c| &c.uncertainty.basis),
+                _ => None,
+            };
+            if let Some(b) = basis.filter(|b| !b.is_empty()) {
+                out += &format!("{SNAPSHOT_BASIS_INDENT}({})\n", b.replace('\n', " "));
+            }
+        }
+        out
     }
 
     /// A JSON object in insertion order: each entry {"value": …} for integers and labels,
@@ -309,6 +366,7 @@ impl KeyNumbers {
                 KeyValue::Text(s) => json!({ "value": s }),
                 KeyValue::Series(v) => json!({
                     "values": v.iter().map(|c| c.value).collect::<Vec<_>>(),
+                    "computed": v.iter().map(|c| c.computed).collect::<Vec<_>>(),
                     "uncertainties": v.iter().map(|c| c.uncertainty.value).collect::<Vec<_>>(),
                     "uncertainty_basis": v.first().map(|c| c.uncertainty.basis.clone()),
                     "digits": v.iter().map(|c| c.digits).collect::<Vec<_>>(),
@@ -317,6 +375,7 @@ impl KeyNumbers {
                 }),
                 KeyValue::Float(c) => json!({
                     "value": c.value,
+                    "computed": c.computed,
                     "uncertainty": c.uncertainty.value,
                     "uncertainty_basis": c.uncertainty.basis,
                     "unit": c.unit,
@@ -353,6 +412,7 @@ impl KeyNumbers {
                     return Err(bad("as many uncertainties as values are needed"));
                 }
                 let digits = entry.get("digits").and_then(Value::as_array);
+                let computed = entry.get("computed").and_then(Value::as_array);
                 let mut cited = Vec::with_capacity(values.len());
                 for (i, (v, u)) in values.iter().zip(us).enumerate() {
                     let (v, u) = match (float(v), float(u)) {
@@ -365,6 +425,7 @@ impl KeyNumbers {
                     };
                     cited.push(Cited {
                         value: v,
+                        computed: computed.and_then(|c| c.get(i)).and_then(float).unwrap_or(v),
                         digits: d,
                         uncertainty: Uncertainty::new(u, text("uncertainty_basis")),
                         unit: text("unit").to_string(),
@@ -376,6 +437,7 @@ impl KeyNumbers {
                 match (v, float(u)) {
                     (Some(v), Some(u)) if u >= 0.0 => KeyValue::Float(Cited {
                         value: v,
+                        computed: entry.get("computed").and_then(float).unwrap_or(v),
                         digits: match entry.get("digits") {
                             Some(d) => digits_of(d).ok_or_else(|| bad("digits from 1 to 17"))?,
                             None => supported_digits(v, u),
@@ -403,8 +465,8 @@ impl KeyNumbers {
 
     /// Reads back the lines [`KeyNumbers::to_snapshot`] writes (the body of an insta
     /// snapshot; its `---` header is skipped). The snapshot keeps less than the JSON: each
-    /// uncertainty to one figure (read as that figure plus its rounding, so that it is never
-    /// smaller than the one printed from), no basis, and a label that reads as a number is
+    /// uncertainty to one figure (rounded up when printed, so read as it stands), its basis
+    /// on the next line, and a label that reads as a number is
     /// taken for one. A key may itself contain " = " (`eps where k = k2`): the split is the
     /// first after which the rest reads as a number, else the first.
     pub fn from_snapshot(text: &str) -> Result<Self, String> {
@@ -419,6 +481,23 @@ impl KeyNumbers {
         let mut out = KeyNumbers::default();
         for (n, line) in lines.iter().enumerate() {
             if line.trim().is_empty() {
+                continue;
+            }
+            // the basis of the uncertainty of the number above
+            if let Some(basis) = line
+                .strip_prefix(SNAPSHOT_BASIS_INDENT)
+                .and_then(|b| b.strip_prefix('('))
+                .and_then(|b| b.strip_suffix(')'))
+            {
+                match out.0.last_mut() {
+                    Some((_, KeyValue::Float(c))) => c.uncertainty.basis = basis.to_string(),
+                    Some((_, KeyValue::Series(v))) => {
+                        for c in v {
+                            c.uncertainty.basis = basis.to_string();
+                        }
+                    }
+                    _ => return Err(format!("snapshot line {}: a basis with no number", n + 1)),
+                }
                 continue;
             }
             let splits: Vec<usize> = line.match_indices(" = ").map(|(i, _)| i).collect();
@@ -485,19 +564,13 @@ fn cited_from_text(value: &str, uncertainty: Option<&str>, unit: &str) -> Option
                 .parse()
                 .ok()
                 .filter(|u: &f64| u.is_finite() && *u >= 0.0)?;
-            let half = if u > 0.0 {
-                0.5 * 10f64.powf(u.log10().floor())
-            } else {
-                0.0
-            };
-            (
-                u + half,
-                "as printed in a snapshot (one figure, plus its rounding)",
-            )
+            // printed rounded up to one figure, so the printed value is itself a bound
+            (u, "as printed in a snapshot (one figure, rounded up)")
         }
     };
     Some(Cited {
         value: x,
+        computed: x,
         digits,
         uncertainty: Uncertainty::new(u, basis),
         unit: unit.to_string(),
@@ -521,7 +594,43 @@ mod tests {
         assert_eq!(supported_digits(1.2345678, 3e-4), 5);
         let mut k = KeyNumbers::default();
         k.cited("x", 1.2345678, 12, Uncertainty::new(3e-4, "test"), "m");
-        assert_eq!(k.to_snapshot(), "x = 1.2346e0 ± 3e-4 m\n");
+        assert_eq!(k.to_snapshot(), "x = 1.2346e0 ± 3e-4 m\n    (test)\n");
+        // and reads back with its basis
+        let back = KeyNumbers::from_snapshot(&k.to_snapshot()).unwrap();
+        let Some(KeyValue::Float(c)) = back.get("x") else {
+            panic!()
+        };
+        assert_eq!(
+            (c.uncertainty.value, c.uncertainty.basis.as_str()),
+            (3e-4, "test")
+        );
         assert_eq!(k.to_json()["x"]["digits"], 5);
+    }
+
+    #[test]
+    fn a_printed_value_never_lies_outside_its_uncertainty() {
+        // 6 figures asked of a number known to 2e-12: the rounding (4e-7) is folded in
+        let mut k = KeyNumbers::default();
+        k.cited(
+            "v",
+            1.6020139571539405,
+            6,
+            Uncertainty::new(2e-12, "test"),
+            "",
+        );
+        let Some(KeyValue::Float(c)) = k.get("v") else {
+            panic!()
+        };
+        assert_eq!(c.value, 1.60201);
+        assert!((c.value - c.computed).abs() <= c.uncertainty.value);
+        assert!(k
+            .to_snapshot()
+            .starts_with("v = 1.60201e0 ± 4e-6\n    (the rounding to 6 figures"));
+        // uncertainties print rounded up, and the prose formatter rounds before it picks
+        // the exponent
+        assert_eq!(round_up_one_figure(2.1e-12), 3e-12);
+        assert_eq!(round_up_one_figure(3e-4), 3e-4);
+        assert_eq!(pretty(9.96e-5, 1), "10⁻⁴");
+        assert_eq!(pretty(0.0009996, 2), "1.0 × 10⁻³");
     }
 }

@@ -121,6 +121,105 @@ pub fn time_unit(f1: f64) -> f64 {
     crate::model::galerkin::first_frequency() / (2.0 * std::f64::consts::PI * f1)
 }
 
+/// The rig as built: the strip, the pin's cantilever and the steel.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Rig {
+    /// The impacting strip.
+    pub beam: Strip,
+    /// The pin's cantilever.
+    pub pin: Strip,
+    /// The steel of both.
+    pub material: Material,
+}
+
+/// The paper's rig, nominal: the stated dimensions and mild steel at E = 200 GPa.
+pub const RIG: Rig = Rig {
+    beam: BEAM,
+    pin: PIN_BEAM,
+    material: MILD_STEEL[0],
+};
+
+/// The ranges we assume for what the paper states as nominal values, each (low, high):
+/// Young's modulus of mild steel 200–210 GPa; density 7800–7900 kg/m³; the strip's
+/// thickness 1 mm ± 2.5 % (a cold-rolled strip's tolerance) and free length 300 ± 2 mm
+/// (where the clamp grips); the pin bar's thickness 12 ± 0.1 mm and length 300 ± 2 mm. The
+/// widths cancel from every quantity below but f₁'s, which does not depend on them.
+pub const RANGES: [(&str, f64, f64); 6] = [
+    ("E (Pa)", 200e9, 210e9),
+    ("ρ (kg/m³)", 7800.0, 7900.0),
+    ("h (m)", 0.975e-3, 1.025e-3),
+    ("L (m)", 0.298, 0.302),
+    ("h_pin (m)", 11.9e-3, 12.1e-3),
+    ("L_pin (m)", 0.298, 0.302),
+];
+
+impl Rig {
+    /// The rig at one corner of [`RANGES`]: bit i of `corner` picks the high end of range i.
+    pub fn corner(corner: u32) -> Rig {
+        let pick = |i: usize| {
+            let (_, lo, hi) = RANGES[i];
+            if corner >> i & 1 == 1 {
+                hi
+            } else {
+                lo
+            }
+        };
+        Rig {
+            beam: Strip {
+                thickness: pick(2),
+                length: pick(3),
+                ..BEAM
+            },
+            pin: Strip {
+                thickness: pick(4),
+                length: pick(5),
+                ..PIN_BEAM
+            },
+            material: Material {
+                youngs_modulus: pick(0),
+                density: pick(1),
+            },
+        }
+    }
+
+    /// k/k₁ of the pin at the strip's tip.
+    pub fn stop_ratio(&self) -> f64 {
+        stop_ratio(
+            &self.beam,
+            self.pin.tip_stiffness(&self.material),
+            &self.material,
+        )
+    }
+}
+
+/// The range (low, high) of `quantity` over the 64 corners of [`RANGES`]. Every quantity
+/// computed here is a monotone function of each parameter (products of powers of them, or
+/// monotone in such a product), so its extremes over the box are at corners.
+pub fn range_over(
+    quantity: impl Fn(&Rig) -> Result<f64, ParameterError>,
+) -> Result<(f64, f64), ParameterError> {
+    let mut range = (f64::INFINITY, f64::NEG_INFINITY);
+    for corner in 0..1u32 << RANGES.len() {
+        let q = quantity(&Rig::corner(corner))?;
+        range = (range.0.min(q), range.1.max(q));
+    }
+    Ok(range)
+}
+
+/// The pin's own first resonance (Hz): its cantilever's, by the same beam theory.
+pub fn pin_resonance(rig: &Rig) -> Result<f64, ParameterError> {
+    rig.pin.frequency(1, &rig.material)
+}
+
+/// The pin's effective mass at its tip over the strip's modal mass at its tip, both in
+/// their first modes: each is m/4 of its beam's mass m (a mode normalised with ∫φ² = 1 and
+/// φ(1) = 2 has modal tip mass m/φ(1)² = m/4), so the ratio is the ratio of the beams'
+/// masses, h_pin L_pin / (h L) for equal widths. (Rayleigh's static value for the pin,
+/// 33/140 of its mass, gives 0.94 of this.)
+pub fn pin_mass_ratio(rig: &Rig) -> f64 {
+    (rig.pin.thickness * rig.pin.length) / (rig.beam.thickness * rig.beam.length)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

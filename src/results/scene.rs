@@ -66,6 +66,10 @@ pub enum Outcome {
     NoClaim,
     /// A result beyond the paper (no claim of it to check).
     Extension,
+    /// Validation: the model agrees with part of what the experiment observed.
+    PartlyConsistent,
+    /// Validation: the model contradicts what the experiment observed.
+    Inconsistent,
 }
 
 impl std::fmt::Display for Outcome {
@@ -76,6 +80,8 @@ impl std::fmt::Display for Outcome {
             Outcome::NotReproduced => "not reproduced",
             Outcome::NoClaim => "a check of our methods",
             Outcome::Extension => "beyond the paper",
+            Outcome::PartlyConsistent => "partly consistent with the experiment",
+            Outcome::Inconsistent => "inconsistent with the experiment",
         })
     }
 }
@@ -111,12 +117,43 @@ impl Rendered {
     }
 }
 
+/// Where the book's landing page lists a result.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize)]
+pub enum Group {
+    /// A figure or claim of the paper.
+    Paper,
+    /// Beyond the paper: a question it raises and does not answer.
+    Beyond,
+    /// Validation against the paper's experiment (§6).
+    Validation,
+    /// Our methods: their error and cost (no claim of the paper).
+    Methods,
+}
+
+impl std::fmt::Display for Group {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Group::Paper => "The paper's results",
+            Group::Beyond => "Beyond the paper",
+            Group::Validation => "Validation against the experiment",
+            Group::Methods => "Methods",
+        })
+    }
+}
+
 /// One result of the paper.
 pub trait Scene: Sync {
     /// The name on the command line and of its output directory.
     const NAME: &'static str;
     /// Where in the paper.
     const PAPER: &'static str;
+    /// Its row title on the book's landing page (unique among the scenes).
+    const TITLE: &'static str;
+    /// The paper's claim in a few words, for the landing page's table ("—" where the paper
+    /// makes none).
+    const GIST: &'static str;
+    /// The landing page's group.
+    const GROUP: Group;
     /// What it computes, in one line.
     const SUMMARY: &'static str;
     /// The paper's claim, in one sentence (markdown; "—" for a methods result).
@@ -172,6 +209,12 @@ pub trait Entry: Sync {
     fn paper(&self) -> &'static str;
     /// [`Scene::SUMMARY`].
     fn summary(&self) -> &'static str;
+    /// [`Scene::TITLE`].
+    fn title(&self) -> &'static str;
+    /// [`Scene::GIST`].
+    fn gist(&self) -> &'static str;
+    /// [`Scene::GROUP`].
+    fn group(&self) -> Group;
     /// [`Scene::CLAIM`].
     fn claim(&self) -> &'static str;
     /// [`Scene::CHAPTER`].
@@ -187,6 +230,8 @@ pub trait Entry: Sync {
     fn reduced_for_tests(&self) -> bool;
     /// The folder under `src/scenes/` that holds it (its fingerprint's name).
     fn module(&self) -> &'static str;
+    /// Its parameters at a resolution, as written into its outputs (no computation).
+    fn params_json(&self, resolution: Resolution) -> serde_json::Value;
     /// Computes, picks the key numbers and the verdict, renders.
     fn run(&self, resolution: Resolution, progress: &dyn Progress) -> Result<SceneOutput, Error>;
 }
@@ -200,6 +245,15 @@ impl<S: Scene> Entry for S {
     }
     fn summary(&self) -> &'static str {
         S::SUMMARY
+    }
+    fn title(&self) -> &'static str {
+        S::TITLE
+    }
+    fn gist(&self) -> &'static str {
+        S::GIST
+    }
+    fn group(&self) -> Group {
+        S::GROUP
     }
     fn claim(&self) -> &'static str {
         S::CLAIM
@@ -222,6 +276,9 @@ impl<S: Scene> Entry for S {
     }
     fn module(&self) -> &'static str {
         module_of::<S>()
+    }
+    fn params_json(&self, resolution: Resolution) -> serde_json::Value {
+        serde_json::to_value(S::params(resolution)).unwrap_or_default()
     }
     fn run(&self, resolution: Resolution, progress: &dyn Progress) -> Result<SceneOutput, Error> {
         run_with::<S>(&S::params(resolution), resolution, progress)

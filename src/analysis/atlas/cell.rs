@@ -5,7 +5,7 @@
 use super::{Attractor, Cell};
 use crate::analysis::orbit::{random_state, relative_residual, SplitMix64};
 use crate::analysis::shooting::{self, PeriodicOrbit};
-use crate::engine::sim::{Simulator, Strobe};
+use crate::engine::sim::{Events, Simulator, Strobe};
 use crate::error::Error;
 use nalgebra::DVector;
 
@@ -173,6 +173,25 @@ impl CellSearch<'_> {
         Ok(all.len() - found.len())
     }
 
+    /// The tip velocities of the entries into contact among `events`, in units of ωA_free.
+    fn entry_velocities(&self, events: &Events) -> Vec<f64> {
+        let scale = self.sim.model().free_tip_amplitude().1;
+        events
+            .events
+            .iter()
+            .filter(|e| e.entering && !e.grazing)
+            .map(|e| e.tip_velocity / scale)
+            .collect()
+    }
+
+    /// The entry velocities (units of ωA_free) of `orbit` over one period.
+    pub fn impact_velocities(&self, orbit: &PeriodicOrbit) -> Result<Vec<f64>, Error> {
+        let mut events = Events::default();
+        let x = DVector::from_column_slice(&orbit.state);
+        self.sim.run(&x, orbit.period_m, &mut events)?;
+        Ok(self.entry_velocities(&events))
+    }
+
     /// Adds an orbit unless it is one already found; returns its index.
     fn add(&self, found: &mut Vec<Found>, orbit: PeriodicOrbit) -> Result<usize, Error> {
         let x = DVector::from_column_slice(&orbit.state);
@@ -184,11 +203,12 @@ impl CellSearch<'_> {
         }) {
             return Ok(i);
         }
-        let mut strobe = Strobe::default();
-        if orbit.period_m > 1 {
-            self.sim.run(&x, orbit.period_m - 1, &mut strobe)?;
-        }
+        // one orbit period: its strobe points (the first m) and its entries into contact
+        let (mut strobe, mut events) = (Strobe::default(), Events::default());
+        self.sim
+            .run(&x, orbit.period_m, &mut (&mut strobe, &mut events))?;
         let mut points = strobe.states();
+        points.truncate(orbit.period_m as usize);
         if points.is_empty() {
             points.push(x);
         }
@@ -199,6 +219,7 @@ impl CellSearch<'_> {
                 spectral_radius: orbit.spectral_radius(),
                 continued: false,
                 starts: Vec::new(),
+                impact_velocities: self.entry_velocities(&events),
             },
             strobe: points,
         });

@@ -34,11 +34,38 @@ use cell::{CellSearch, Found};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
+/// How many modes each row (each k) uses.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub enum ModesRule {
+    /// The same N at every k.
+    Fixed(usize),
+    /// max(`minimum`, N*(k)), N*(k) by stiffness matching, the book's one criterion: the
+    /// fewest modes that give the one-contact experiment's observables (contact duration,
+    /// exit tip velocity, first-mode velocity) to relative accuracy `tolerance`
+    /// ([`crate::analysis::convergence::modes_needed`]). Computed at every `stride`-th
+    /// row and at the last; each row takes the value of the nearest computed row at or
+    /// above its k (N* grows with k, so a row never gets fewer modes than it needs).
+    ///
+    /// The minimum is there because one contact is not a forced orbit: at soft stops N*
+    /// is 2–5, and the atlas's own check (the orbit again with ten more modes) found the
+    /// forced orbits' entry velocities moving by more than 1 % from such N, where from
+    /// N = 10 (the paper's truncation) they do not. The criterion is necessary, not
+    /// sufficient.
+    Matched {
+        /// The relative accuracy of the one-contact observables.
+        tolerance: f64,
+        /// Rows between two computations of N*.
+        stride: usize,
+        /// The fewest modes any row uses.
+        minimum: usize,
+    },
+}
+
 /// What the atlas computes.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct AtlasParams {
-    /// N, the number of modes.
-    pub modes: usize,
+    /// N of each row: fixed, or matched to k.
+    pub modes: ModesRule,
     /// k/k₁ range (log-spaced, inclusive).
     pub k_over_k1_range: (f64, f64),
     /// Rows (k values).
@@ -59,8 +86,8 @@ pub struct AtlasParams {
     pub max_period: u64,
     /// Seed of the random starts.
     pub seed: u64,
-    /// N of the convergence check.
-    pub check_modes: usize,
+    /// The convergence check uses the row's N plus this many modes.
+    pub check_extra_modes: usize,
     /// Every `check_stride`-th row and column is checked.
     pub check_stride: usize,
     /// Further random starts on checked cells, to estimate how many attractors the cells'
@@ -69,12 +96,16 @@ pub struct AtlasParams {
 }
 
 impl AtlasParams {
-    /// The book's atlas: N = 10, k/k₁ 1…10⁴ × ω/(β₁⁻)² 0.5…3 at 128 × 128, Figure 4's
-    /// ζ₁ = 0.01 and d₀ = 0; rest and two random starts per cell; checked against N = 20
-    /// (β₂₀⁺³ > 10⁴k₁: the stiffness-matching criterion holds over the whole range).
+    /// The book's atlas: k/k₁ 1…10⁴ × ω/(β₁⁻)² 0.5…3 at 128 × 128, Figure 4's ζ₁ = 0.01
+    /// and d₀ = 0; N matched to k (1 % accuracy of one contact, N* computed every 8th
+    /// row, at least 10); rest and two random starts per cell; checked with 10 more modes.
     pub fn book() -> Self {
         Self {
-            modes: 10,
+            modes: ModesRule::Matched {
+                tolerance: 1e-2,
+                stride: 8,
+                minimum: 10,
+            },
             k_over_k1_range: (1.0, 1e4),
             k_points: 128,
             omega_range: (0.5, 3.0),
@@ -85,31 +116,58 @@ impl AtlasParams {
             transient: 300,
             max_period: 8,
             seed: 2013,
-            check_modes: 20,
+            check_extra_modes: 10,
             check_stride: 16,
             check_starts: 16,
         }
     }
 
-    /// A reduced atlas for the tests: 9 × 9 cells over the same ranges.
+    /// A reduced atlas for the tests: 9 × 9 cells over the same ranges, N* computed on
+    /// every other row (the book's stride of 8 would leave two of nine rows computed).
     pub fn test() -> Self {
+        let book = Self::book();
         Self {
+            modes: match book.modes {
+                ModesRule::Matched {
+                    tolerance, minimum, ..
+                } => ModesRule::Matched {
+                    tolerance,
+                    stride: 2,
+                    minimum,
+                },
+                fixed => fixed,
+            },
             k_points: 9,
             omega_points: 9,
             check_stride: 4,
             check_starts: 4,
-            ..Self::book()
+            ..book
         }
     }
 
     /// Every count in range, the ranges positive and increasing.
     pub fn validate(&self) -> Result<(), ParameterError> {
-        error::count_in_range("modes N", self.modes, crate::model::galerkin::MAX_MODES)?;
-        error::count_in_range(
-            "check modes",
-            self.check_modes,
-            crate::model::galerkin::MAX_MODES,
-        )?;
+        match self.modes {
+            ModesRule::Fixed(n) => {
+                error::count_in_range("modes N", n, crate::model::galerkin::MAX_MODES)?;
+            }
+            ModesRule::Matched {
+                tolerance,
+                stride,
+                minimum,
+            } => {
+                error::count_in_range("modes minimum", minimum, crate::model::galerkin::MAX_MODES)?;
+                if !(1e-6..=0.5).contains(&tolerance) {
+                    return Err(ParameterError::new(
+                        "modes tolerance",
+                        error::number(tolerance),
+                        "a relative accuracy from 1e-6 to 0.5",
+                    ));
+                }
+                error::count_in_range("modes stride", stride, 4096)?;
+            }
+        }
+        error::count_in_range("check extra modes", self.check_extra_modes, 100)?;
         error::count_in_range("k points", self.k_points, 4096)?;
         error::count_in_range("omega points", self.omega_points, 4096)?;
         error::count_in_range("starts per cell", self.starts, 64)?;
@@ -136,9 +194,57 @@ impl AtlasParams {
             }
         }
         // the model checks the rest (k, ω, ζ₁, d₀ ranges) with its own messages
-        self.model(self.modes, self.k_over_k1_range.1, self.omega_range.1)?;
-        self.model(self.modes, self.k_over_k1_range.0, self.omega_range.0)?;
+        self.model(1, self.k_over_k1_range.1, self.omega_range.1)?;
+        self.model(1, self.k_over_k1_range.0, self.omega_range.0)?;
         Ok(())
+    }
+
+    /// N of every row (see [`ModesRule`]). For a matched rule this runs the one-contact
+    /// experiment at each computed row (about 0.4 CPU-s each, in parallel).
+    pub fn modes_by_row(&self) -> Result<Vec<usize>, Error> {
+        let (tolerance, stride, minimum) = match self.modes {
+            ModesRule::Fixed(n) => return Ok(vec![n; self.k_points]),
+            ModesRule::Matched {
+                tolerance,
+                stride,
+                minimum,
+            } => (tolerance, stride, minimum),
+        };
+        let mut computed: Vec<usize> = (0..self.k_points).step_by(stride).collect();
+        if computed.last() != Some(&(self.k_points - 1)) {
+            computed.push(self.k_points - 1);
+        }
+        let needed: Vec<usize> = computed
+            .par_iter()
+            .map(|&i| {
+                crate::analysis::convergence::matched_modes(
+                    self.k_over_k1(i),
+                    tolerance,
+                    self.zeta1,
+                    minimum,
+                )
+            })
+            .collect::<Result<_, Error>>()?;
+        Ok((0..self.k_points)
+            .map(|i| {
+                let at = computed
+                    .iter()
+                    .position(|&c| c >= i)
+                    .unwrap_or(computed.len() - 1);
+                // (and never fewer than a computed row below: N* is monotone in k, but a
+                // scan's answer may dip by a step)
+                needed[..=at].iter().copied().max().unwrap_or(minimum)
+            })
+            .collect())
+    }
+
+    /// The relative accuracy that a checked cell's impact velocities must meet between
+    /// N and N + `check_extra_modes` (the matched rule's tolerance; 1 % for a fixed N).
+    pub fn check_tolerance(&self) -> f64 {
+        match self.modes {
+            ModesRule::Matched { tolerance, .. } => tolerance,
+            ModesRule::Fixed(_) => 1e-2,
+        }
     }
 
     /// The k/k₁ of row i (log-spaced).
@@ -187,6 +293,9 @@ pub struct Attractor {
     pub continued: bool,
     /// The seeded starts that reached it (0 = rest).
     pub starts: Vec<usize>,
+    /// The tip velocities of its entries into contact over one orbit period, in units of
+    /// ωA_free (the free tip velocity amplitude at the cell's ω), in the order they occur.
+    pub impact_velocities: Vec<f64>,
 }
 
 impl Attractor {
@@ -199,8 +308,14 @@ impl Attractor {
 /// The convergence check of a cell: the orbit from rest with more modes.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Check {
+    /// The number of modes it used.
+    pub modes: usize,
     /// Its (m, n), if start 0 reached a stable orbit.
     pub from_rest: Option<(u64, usize)>,
+    /// The largest difference of the entry velocities (sorted) between the cell's orbit
+    /// from rest and this one, relative to the largest of them, when both have the same
+    /// (m, n).
+    pub impact_velocity_change: Option<f64>,
     /// Stable orbits (N modes) reached from `check_starts` further random starts that the
     /// cell's search did not find.
     pub missed: usize,
@@ -225,16 +340,19 @@ impl Cell {
         self.from_rest.map(|i| &self.attractors[i])
     }
 
-    /// Whether the check's orbit from rest is one of this cell's (m, n) labels (None
-    /// when the cell is not checked).
-    pub fn check_agrees(&self) -> Option<bool> {
+    /// Whether the check's orbit from rest is the cell's: the same (m, n) as the cell's
+    /// orbit from rest, with entry velocities within `tolerance` of it (None when the
+    /// cell is not checked). Both unsettled also agree.
+    pub fn check_agrees(&self, tolerance: f64) -> Option<bool> {
         let c = self.check.as_ref()?;
-        Some(match c.from_rest {
-            Some((m, n)) => self
-                .attractors
-                .iter()
-                .any(|a| a.period_m == m && a.impacts_n == n),
-            None => self.from_rest.is_none(),
+        Some(match (c.from_rest, self.rest()) {
+            (Some((m, n)), Some(a)) => {
+                a.period_m == m
+                    && a.impacts_n == n
+                    && c.impact_velocity_change.is_some_and(|d| d <= tolerance)
+            }
+            (None, None) => true,
+            _ => false,
         })
     }
 }
@@ -246,6 +364,8 @@ pub struct Row {
     pub index: usize,
     /// k/k₁.
     pub k_over_k1: f64,
+    /// N, the modes this row uses.
+    pub modes: usize,
     /// Cells in increasing ω.
     pub cells: Vec<Cell>,
 }
@@ -261,15 +381,20 @@ pub struct AtlasData {
     pub rows: Vec<Row>,
 }
 
-/// Computes row i; `progress` is called once per finished cell.
-pub fn row(p: &AtlasParams, i: usize, progress: &(dyn Fn() + Sync)) -> Result<Row, Error> {
+/// Computes row i with `modes` modes; `progress` is called once per finished cell.
+pub fn row(
+    p: &AtlasParams,
+    i: usize,
+    modes: usize,
+    progress: &(dyn Fn() + Sync),
+) -> Result<Row, Error> {
     let k = p.k_over_k1(i);
     let checked_row = i.is_multiple_of(p.check_stride);
     let mut cells = Vec::with_capacity(p.omega_points);
     let mut previous: Vec<Found> = Vec::new();
     for j in 0..p.omega_points {
         let w = p.omega_over_w1(j);
-        let sim = Simulator::new(p.model(p.modes, k, w)?.model()?)?;
+        let sim = Simulator::new(p.model(modes, k, w)?.model()?)?;
         let search = CellSearch {
             sim: &sim,
             starts: p.starts,
@@ -279,15 +404,25 @@ pub fn row(p: &AtlasParams, i: usize, progress: &(dyn Fn() + Sync)) -> Result<Ro
         };
         let (mut cell, found) = search.run(&previous)?;
         if checked_row && j.is_multiple_of(p.check_stride) {
-            let sim = Simulator::new(p.model(p.check_modes, k, w)?.model()?)?;
+            let check_modes = (modes + p.check_extra_modes).min(crate::model::galerkin::MAX_MODES);
+            let sim = Simulator::new(p.model(check_modes, k, w)?.model()?)?;
             let check = CellSearch {
                 sim: &sim,
                 ..search
             };
             let orbit = check.from_start(0)?;
+            let change = match (&orbit, cell.rest()) {
+                (Some(o), Some(a)) if (o.period_m, o.impacts_n) == (a.period_m, a.impacts_n) => {
+                    let theirs = check.impact_velocities(o)?;
+                    Some(velocity_change(&a.impact_velocities, &theirs))
+                }
+                _ => None,
+            };
             let extra = p.starts..p.starts + p.check_starts;
             cell.check = Some(Check {
+                modes: check_modes,
                 from_rest: orbit.map(|o| (o.period_m, o.impacts_n)),
+                impact_velocity_change: change,
                 missed: search.missed(&found, extra)?,
             });
         }
@@ -298,8 +433,29 @@ pub fn row(p: &AtlasParams, i: usize, progress: &(dyn Fn() + Sync)) -> Result<Ro
     Ok(Row {
         index: i,
         k_over_k1: k,
+        modes,
         cells,
     })
+}
+
+/// The largest difference between two lists of entry velocities, each sorted, relative to
+/// the largest velocity (1 when their lengths differ).
+fn velocity_change(a: &[f64], b: &[f64]) -> f64 {
+    if a.len() != b.len() || a.is_empty() {
+        return 1.0;
+    }
+    let sorted = |v: &[f64]| {
+        let mut v = v.to_vec();
+        v.sort_by(f64::total_cmp);
+        v
+    };
+    let (a, b) = (sorted(a), sorted(b));
+    let scale = a.iter().chain(&b).fold(0.0f64, |m, v| m.max(v.abs()));
+    a.iter()
+        .zip(&b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+        / scale.max(f64::MIN_POSITIVE)
 }
 
 /// A part of the rows: shard `index` of `count` takes rows i with i mod count = index
@@ -382,6 +538,14 @@ impl Partial {
             if r.k_over_k1 != p.k_over_k1(i) {
                 return bad(format!("k/k₁ = {} of row {i}", r.k_over_k1), "the grid's k");
             }
+            if r.modes == 0 || r.modes > crate::model::galerkin::MAX_MODES {
+                return bad(format!("modes of row {i}"), "1 ≤ N ≤ the model's largest N");
+            }
+            if let ModesRule::Fixed(n) = p.modes {
+                if r.modes != n {
+                    return bad(format!("modes of row {i}"), "the fixed N of the parameters");
+                }
+            }
             if r.cells.len() != p.omega_points {
                 return bad(
                     format!("row {i} ({} cells)", r.cells.len()),
@@ -425,6 +589,21 @@ impl Partial {
                         {
                             return bad(at("check.from_rest"), "1 ≤ m ≤ max_period");
                         }
+                        if ch.modes
+                            != (r.modes + p.check_extra_modes)
+                                .min(crate::model::galerkin::MAX_MODES)
+                        {
+                            return bad(at("check.modes"), "the row's N plus check_extra_modes");
+                        }
+                        if ch
+                            .impact_velocity_change
+                            .is_some_and(|d| !(0.0..=1.0).contains(&d))
+                        {
+                            return bad(
+                                at("check.impact_velocity_change"),
+                                "a relative change in [0, 1]",
+                            );
+                        }
                         if ch.missed > p.check_starts {
                             return bad(at("check.missed"), "at most `check_starts`");
                         }
@@ -438,7 +617,7 @@ impl Partial {
 }
 
 /// The `format` of a [`Partial`].
-pub const PARTIAL_FORMAT: &str = "impacting-cantilever atlas shard v1";
+pub const PARTIAL_FORMAT: &str = "impacting-cantilever atlas shard v2";
 
 /// Computes the rows of one shard in parallel (rayon); `progress` is called once per cell.
 pub fn compute_shard(
@@ -447,10 +626,11 @@ pub fn compute_shard(
     progress: &(dyn Fn() + Sync),
 ) -> Result<Partial, Error> {
     p.validate()?;
+    let modes = p.modes_by_row()?;
     let indices: Vec<usize> = shard.rows(p.k_points).collect();
     let rows = indices
         .par_iter()
-        .map(|&i| row(p, i, progress))
+        .map(|&i| row(p, i, modes[i], progress))
         .collect::<Result<Vec<_>, _>>()?;
     Ok(Partial {
         format: PARTIAL_FORMAT.to_string(),

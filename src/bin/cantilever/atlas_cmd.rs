@@ -3,7 +3,7 @@
 //! writes it).
 
 use crate::progress;
-use impacting_cantilever::analysis::atlas::{self, AtlasParams, Partial, Shard};
+use impacting_cantilever::analysis::atlas::{self, AtlasParams, ModesRule, Partial, Shard};
 use impacting_cantilever::base::provenance::Provenance;
 use impacting_cantilever::error::{Error, ParameterError};
 use impacting_cantilever::results::scene::{self, Progress, Resolution, Scene};
@@ -34,6 +34,15 @@ pub struct AtlasArgs {
     /// Seed of the random starts.
     #[arg(long)]
     pub seed: Option<u64>,
+    /// The same N at every k, 1 to 400 (default: N matched to each k by stiffness
+    /// matching, the fewest modes that give one contact to --modes-tolerance, and at
+    /// least 10).
+    #[arg(long, conflicts_with = "modes_tolerance")]
+    pub modes: Option<usize>,
+    /// The relative accuracy of one contact that sets N at each k, 1e-6 to 0.5 (default
+    /// 1e-2).
+    #[arg(long, allow_hyphen_values = true)]
+    pub modes_tolerance: Option<f64>,
 }
 
 /// `--resolution`.
@@ -62,6 +71,22 @@ pub fn params(a: &AtlasArgs) -> Result<AtlasParams, ParameterError> {
     }
     if let Some(v) = a.seed {
         p.seed = v;
+    }
+    if let Some(n) = a.modes {
+        p.modes = ModesRule::Fixed(n);
+    }
+    if let (
+        Some(t),
+        ModesRule::Matched {
+            stride, minimum, ..
+        },
+    ) = (a.modes_tolerance, p.modes)
+    {
+        p.modes = ModesRule::Matched {
+            tolerance: t,
+            stride,
+            minimum,
+        };
     }
     p.validate()?;
     Ok(p)

@@ -89,10 +89,11 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
-    /// Cite a key number of a scene (or all of them): the value ± its uncertainty and how
-    /// it was obtained, its unit, the parameters, the method, the build that computed it,
-    /// and the software and the paper as plain text and BibTeX. Computes the scene at the
-    /// book's resolution (Figure 5 takes ~15 s).
+    /// Cite a key number of a scene (or all of them): a sentence to paste, then the value
+    /// ± its uncertainty and how it was obtained, its unit, the parameters, the method, the
+    /// build, and the software and the paper as plain text and BibTeX. Reads the book's
+    /// published numbers (instant); --recompute computes the scene at the book's
+    /// resolution instead (the atlas takes about a minute).
     Cite {
         /// The scene's name (see `cantilever list`).
         scene: String,
@@ -102,6 +103,10 @@ enum Command {
         /// Print JSON (the scene's key_numbers.json document with the citations).
         #[arg(long)]
         json: bool,
+        /// Compute the scene afresh at the book's resolution (the numbers of the code as it
+        /// stands) instead of reading the published ones.
+        #[arg(long)]
+        recompute: bool,
     },
     /// How many Galerkin modes N resolve a stop of stiffness k to a relative accuracy:
     /// computed by simulating one contact (d₀ = 0, the beam moving in its first mode into
@@ -404,8 +409,18 @@ fn run(cli: Cli) -> Result<(), Failure> {
             }
             Ok(())
         }
-        Command::Cite { scene, key, json } => {
-            let c = cite::run(&scene, key.as_deref(), &progress::Bars::default())?;
+        Command::Cite {
+            scene,
+            key,
+            json,
+            recompute,
+        } => {
+            let c = cite::run(
+                &scene,
+                key.as_deref(),
+                recompute,
+                &progress::Bars::default(),
+            )?;
             if json {
                 outln!("{}", json_text("cite", cite::to_json(&c)));
             } else {

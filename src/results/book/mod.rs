@@ -17,7 +17,7 @@ pub use numbers::NumbersPreprocessor;
 pub use reuse::SceneNumbers;
 
 use crate::base::provenance::Provenance;
-use crate::results::scene::{self, Entry, Progress, Resolution, SceneOutput};
+use crate::results::scene::{self, Entry, Outcome, Progress, Resolution, SceneOutput};
 use anyhow::{bail, Context, Result};
 use mdbook_driver::MDBook;
 use rayon::prelude::*;
@@ -167,7 +167,7 @@ pub fn build_only(
     for (name, source) in EXAMPLES {
         scene::write_atomically(&examples.join(name), source)?;
     }
-    worked::write(
+    let seconds = worked::write(
         &generated.join(worked::DIR),
         &fig4,
         &scene_seconds,
@@ -176,7 +176,11 @@ pub fn build_only(
     )?;
     scene::write_atomically(
         &generated.join("summary.md"),
-        &summary_table(scenes, &numbers, &|chapter| chapter_title(root, chapter)),
+        &summary_table(scenes, &numbers),
+    )?;
+    scene::write_atomically(
+        &generated.join("glance.md"),
+        &glance_table(scenes, &numbers),
     )?;
     let provenance = numbers
         .first()
@@ -185,6 +189,7 @@ pub fn build_only(
     scene::write_atomically(&generated.join("citation.md"), &citation(&provenance))?;
     let t = Instant::now();
     let numbers_pre = NumbersPreprocessor {
+        seconds: seconds.into_iter().collect(),
         numbers: scenes
             .iter()
             .zip(&numbers)
@@ -235,14 +240,76 @@ pub fn build_only(
     })
 }
 
-/// The landing page's summary: for each result, its verdict, the paper's claim, our
+/// The landing page's table, one screen: per group (the paper's results, beyond the paper,
+/// validation, methods), each result's title linked to its chapter, the paper's claim in a
+/// few words, the verdict as a coloured badge and the first headline number with its
+/// uncertainty.
+pub fn glance_table(scenes: &[&dyn Entry], outputs: &[SceneNumbers]) -> String {
+    let mut rows: Vec<(&&dyn Entry, &SceneNumbers)> = scenes.iter().zip(outputs).collect();
+    rows.sort_by_key(|(spec, _)| spec.group());
+    let mut s = String::from(
+        "<table class=\"glance\">\n<thead><tr><th>Result</th><th>The paper says</th>\
+         <th>Verdict</th><th>Our number</th></tr></thead>\n<tbody>\n",
+    );
+    let mut group = None;
+    for (spec, out) in rows {
+        if group != Some(spec.group()) {
+            group = Some(spec.group());
+            s.push_str(&format!(
+                "<tr class=\"group\"><th colspan=\"4\">{}</th></tr>\n",
+                spec.group()
+            ));
+        }
+        let headline = spec
+            .headline()
+            .iter()
+            .find_map(|(label, key)| {
+                let v = out.key_numbers.get(key)?;
+                Some(format!("{label}: {}", for_html(&v.prose(true))))
+            })
+            .unwrap_or_else(|| "—".into());
+        let outcome = out.verdict.outcome;
+        s.push_str(&format!(
+            "<tr><td><a href=\"{}\">{}</a></td><td>{}</td><td><span class=\"badge {}\">{}</span></td><td>{}</td></tr>\n",
+            spec.chapter().replace(".md", ".html"),
+            for_html(spec.title()),
+            for_html(spec.gist()),
+            badge_class(outcome),
+            badge_text(outcome),
+            headline
+        ));
+    }
+    s.push_str("</tbody>\n</table>\n");
+    s
+}
+
+/// The badge's colour class.
+fn badge_class(o: Outcome) -> &'static str {
+    match o {
+        Outcome::Reproduced => "yes",
+        Outcome::Partly | Outcome::PartlyConsistent => "partly",
+        Outcome::NotReproduced | Outcome::Inconsistent => "no",
+        Outcome::NoClaim | Outcome::Extension => "none",
+    }
+}
+
+/// The badge's words (short: the table must fit one screen).
+fn badge_text(o: Outcome) -> &'static str {
+    match o {
+        Outcome::Reproduced => "reproduced",
+        Outcome::Partly => "partly",
+        Outcome::NotReproduced => "not reproduced",
+        Outcome::NoClaim => "method check",
+        Outcome::Extension => "beyond",
+        Outcome::PartlyConsistent => "partly consistent",
+        Outcome::Inconsistent => "inconsistent",
+    }
+}
+
+/// The landing page's detail: for each result, its verdict, the paper's claim, our
 /// headline numbers with their uncertainties, the evidence, and links to the chapter and the
 /// data. One block per result (a table this wide would hide columns).
-pub fn summary_table(
-    scenes: &[&dyn Entry],
-    outputs: &[SceneNumbers],
-    title: &dyn Fn(&str) -> Option<String>,
-) -> String {
+pub fn summary_table(scenes: &[&dyn Entry], outputs: &[SceneNumbers]) -> String {
     let mut s = String::new();
     for (spec, out) in scenes.iter().zip(outputs) {
         let numbers: Vec<String> = spec
@@ -260,23 +327,15 @@ pub fn summary_table(
              *The paper:* {}\n\n*Our numbers:* {}.\n\n*Evidence:* {}.\n\n\
              Data: [data.json](generated/{name}/data.json) · \
              [key numbers](generated/{name}/key_numbers.json)\n\n</div>\n\n",
-            title(spec.chapter()).unwrap_or_else(|| spec.paper().to_string()),
+            for_html(spec.title()),
             spec.chapter(),
             capitalised(&out.verdict.outcome.to_string()),
             spec.claim(),
             numbers.join("; "),
-            out.verdict.evidence
+            for_html(&out.verdict.evidence)
         ));
     }
     s
-}
-
-/// The first heading of chapter file `chapter` under `root/src`.
-fn chapter_title(root: &Path, chapter: &str) -> Option<String> {
-    let text = std::fs::read_to_string(root.join("src").join(chapter)).ok()?;
-    text.lines()
-        .find_map(|l| l.strip_prefix("# "))
-        .map(|t| t.trim().to_string())
 }
 
 /// "partly reproduced" → "Partly reproduced".
@@ -296,10 +355,38 @@ fn human_size(bytes: u64) -> String {
     }
 }
 
-/// A key number's prose for a page: the unit's subscript as HTML (`A_free` would show its
-/// underscore).
-fn for_html(prose: &str) -> String {
-    prose.replace("A_free", "A<sub>free</sub>")
+/// Text for a page with the paper's subscripts as HTML: `r_E`, `A_free`, `β_N`, `[R]_N`
+/// and `ωA_free` would show their underscores. A subscript is a single-letter symbol (or
+/// `]`) followed by `_` and letters or digits; identifiers such as `impact_velocity_1` and
+/// anything inside backticks are left alone.
+pub fn for_html(text: &str) -> String {
+    let chars: Vec<char> = text.chars().collect();
+    let mut out = String::with_capacity(text.len() + 16);
+    let mut in_code = false;
+    let mut i = 0;
+    while i < chars.len() {
+        let c = chars[i];
+        if c == '`' {
+            in_code = !in_code;
+        }
+        let symbol = c.is_alphabetic() || c == ']';
+        // the symbol stands alone: nothing alphanumeric before it, except ω in ωA_free
+        let alone = c == ']' || i == 0 || !chars[i - 1].is_alphanumeric() || chars[i - 1] == 'ω';
+        let run = chars[(i + 2).min(chars.len())..]
+            .iter()
+            .take_while(|ch| ch.is_ascii_alphanumeric())
+            .count();
+        if !in_code && symbol && alone && chars.get(i + 1) == Some(&'_') && run > 0 {
+            let sub: String = chars[i + 2..i + 2 + run].iter().collect();
+            out.push(c);
+            out.push_str(&format!("<sub>{sub}</sub>"));
+            i += 2 + run;
+            continue;
+        }
+        out.push(c);
+        i += 1;
+    }
+    out
 }
 
 /// How to cite the software that built this book, and the paper (plain text and BibTeX).
@@ -326,4 +413,20 @@ fn copy_dir(from: &Path, to: &Path) -> Result<()> {
             .with_context(|| format!("copying {}", entry.path().display()))?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod html_tests {
+    use super::for_html;
+
+    #[test]
+    fn subscripts_become_html_and_identifiers_stay() {
+        assert_eq!(for_html("r_E = 0.72"), "r<sub>E</sub> = 0.72");
+        assert_eq!(for_html("2 ωA_free"), "2 ωA<sub>free</sub>");
+        assert_eq!(for_html("(β_N⁺)³ ≫ k"), "(β<sub>N</sub>⁺)³ ≫ k");
+        assert_eq!(for_html("[R]_N"), "[R]<sub>N</sub>");
+        assert_eq!(for_html("impact_velocity_1"), "impact_velocity_1");
+        assert_eq!(for_html("`r_E` r_E"), "`r_E` r<sub>E</sub>");
+        assert_eq!(for_html("a_"), "a_");
+    }
 }

@@ -14,7 +14,8 @@ use std::collections::HashMap;
 /// In a chapter, `{{n SCENE/KEY}}` becomes the key number's value (to its significant
 /// figures), `{{pm SCENE/KEY}}` the value ± its uncertainty with its unit, and
 /// `{{u SCENE/KEY}}` the uncertainty alone, `{{verdict SCENE}}` the result's verdict
-/// ("**Partly reproduced.**") and `{{evidence SCENE}}` its evidence in one line. An unknown scene or key fails the build.
+/// ("**Partly reproduced.**"), `{{evidence SCENE}}` its evidence in one line and
+/// `{{time SCENE}}` how long it took to compute in the build that computed it. An unknown scene or key fails the build.
 pub struct NumbersPreprocessor {
     /// Key numbers by scene.
     pub numbers: HashMap<String, KeyNumbers>,
@@ -29,6 +30,8 @@ pub struct NumbersPreprocessor {
     pub provenances: HashMap<String, Provenance>,
     /// Where the numbers of pages without a scene come from.
     pub provenance: Provenance,
+    /// How long each scene took in the build that computed it (s).
+    pub seconds: HashMap<String, f64>,
 }
 
 impl NumbersPreprocessor {
@@ -51,7 +54,7 @@ impl NumbersPreprocessor {
         let mut rest = text;
         while let Some(start) = rest.find("{{") {
             let tail = &rest[start + 2..];
-            let Some((kind, after)) = ["n ", "pm ", "u ", "verdict ", "evidence "]
+            let Some((kind, after)) = ["n ", "pm ", "u ", "verdict ", "evidence ", "time "]
                 .iter()
                 .find_map(|k| tail.strip_prefix(k).map(|a| (k.trim(), a)))
             else {
@@ -63,6 +66,16 @@ impl NumbersPreprocessor {
                 .find("}}")
                 .ok_or_else(|| anyhow::anyhow!("unclosed {{{{{kind} …"))?;
             out.push_str(&rest[..start]);
+            if kind == "time" {
+                let scene = after[..end].trim();
+                let secs = self
+                    .seconds
+                    .get(scene)
+                    .ok_or_else(|| anyhow::anyhow!("no time known for scene `{scene}`"))?;
+                out.push_str(&format!("{secs:.0} s"));
+                rest = &after[end + 2..];
+                continue;
+            }
             if kind == "verdict" || kind == "evidence" {
                 let scene = after[..end].trim();
                 let verdict = self
@@ -72,16 +85,19 @@ impl NumbersPreprocessor {
                 out.push_str(&if kind == "verdict" {
                     format!("**{}.**", capitalised(&verdict.outcome.to_string()))
                 } else {
-                    verdict.evidence.clone()
+                    for_html(&verdict.evidence)
                 });
                 rest = &after[end + 2..];
                 continue;
             }
             let value = self.lookup(&after[..end])?;
             out.push_str(&match (kind, value) {
-                ("u", KeyValue::Float(c)) => pretty(c.uncertainty.value, 1),
+                ("u", KeyValue::Float(c)) => pretty(
+                    crate::base::report::round_up_one_figure(c.uncertainty.value),
+                    1,
+                ),
                 ("pm", v) => for_html(&v.prose(true)),
-                (_, v) => v.prose(false),
+                (_, v) => for_html(&v.prose(false)),
             });
             rest = &after[end + 2..];
         }
@@ -183,9 +199,12 @@ mod tests {
             chapters: HashMap::new(),
             provenances: HashMap::new(),
             provenance: Provenance::now("test"),
+            seconds: [("s".to_string(), 12.3)].into_iter().collect(),
         };
+        assert_eq!(p.expand("{{time s}}").unwrap(), "12 s");
         assert_eq!(p.expand("a {{n s/x}} b").unwrap(), "a 1.235 b");
-        assert_eq!(p.expand("{{pm s/x}}").unwrap(), "1.235 ± 3 × 10⁻⁴ T");
+        // (1.23456 to 4 figures: the rounding, 4.4e-4, is larger than 3e-4 and is added)
+        assert_eq!(p.expand("{{pm s/x}}").unwrap(), "1.235 ± 8 × 10⁻⁴ T");
         assert_eq!(
             p.expand("{{n s/n}} {{#include x}}").unwrap(),
             "7 {{#include x}}"

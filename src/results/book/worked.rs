@@ -217,14 +217,15 @@ fn timings(scene_seconds: &[(String, f64)]) -> String {
 /// Recomputes Figure 4 under each change, compares it with `baseline` (the book's Figure 4
 /// numbers of this build) and writes `method.md` and `model.md` into `dir`, with the times
 /// of this build's scenes (`timings.md`). The comparisons are skipped when `dir` holds
-/// them for this build's Figure 4 code already (its fingerprint).
+/// them for this build's Figure 4 code already (its fingerprint). Returns the times of
+/// every scene (this build's, or the last known of a reused one).
 pub fn write(
     dir: &Path,
     baseline: &SceneNumbers,
     scene_seconds: &[(String, f64)],
     resolution: Resolution,
     progress: &dyn Progress,
-) -> Result<()> {
+) -> Result<Vec<(String, f64)>> {
     std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
     // this build's times, and the last known ones of the scenes it reused
     let known: Vec<(String, f64)> = std::fs::read_to_string(dir.join("timings.json"))
@@ -260,7 +261,7 @@ pub fn write(
             .iter()
             .all(|f| dir.join(f).is_file());
     if current {
-        return Ok(());
+        return Ok(merged);
     }
     for (name, what, expected, params) in changes(resolution) {
         let t = Instant::now();
@@ -286,5 +287,5 @@ pub fn write(
         )?;
     }
     scene::write_atomically(&stamp_file, &stamp)?;
-    Ok(())
+    Ok(merged)
 }

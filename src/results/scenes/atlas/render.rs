@@ -189,6 +189,28 @@ pub fn plot(d: &AtlasData) -> Result<String, RenderError> {
                     j = end;
                 }
             }
+            // where N = 10 stops meeting the stiffness-matching criterion: a dashed line
+            // between the last row that needs at most 10 modes and the next
+            if let Some(i) = d.rows.iter().rposition(|r| r.modes <= 10) {
+                if i + 1 < d.rows.len() {
+                    let y = 0.5 * (ks[i] + ks[i + 1]);
+                    chart
+                        .draw_series(DashedLineSeries::new(
+                            vec![(w0, y), (w1, y)],
+                            6,
+                            4,
+                            BLACK.stroke_width(2),
+                        ))
+                        .map_err(drawing)?;
+                    chart
+                        .draw_series(std::iter::once(Text::new(
+                            "N = 10 suffices below",
+                            (w0 + 0.02 * (w1 - w0), y - 0.07 * (l1 - l0)),
+                            ("sans-serif", 15).into_font().color(&BLACK),
+                        )))
+                        .map_err(drawing)?;
+                }
+            }
             draw_key(&key, &panel.key)?;
         }
         root.present().map_err(drawing)?;

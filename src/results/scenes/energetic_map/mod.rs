@@ -4,9 +4,10 @@
 //! paper concludes that such coefficients are "dependent on the dynamics observed"; this
 //! chart says by how much.
 //!
-//! **The truncation at each k** follows stiffness matching (§2.3): modes resolve the stop
-//! once (β_N⁻)³ ≫ k (the weight k/(4β³) of eq 3), so N is the smallest N ≥ 10 with
-//! 4(β_N⁻)³ ≥ 30k, and every point is recomputed with N + 10 modes: a point whose orbit or
+//! **The truncation at each k** follows stiffness matching (§2.3), by the book's one rule
+//! ([`crate::analysis::convergence::matched_modes`]): at least 10 modes, and as many as
+//! one contact needs for its observables to 1 %; every point is recomputed with N + 10
+//! modes: a point whose orbit or
 //! r_E (beyond 0.01) changes is marked unconverged rather than coloured. A random start
 //! marks coexisting attractors.
 
@@ -17,7 +18,7 @@ use crate::error::Error;
 use crate::analysis::orbit::{random_state, OrbitKind, SplitMix64};
 use crate::model::problems::Forced;
 use crate::base::report::{KeyNumbers, Uncertainty};
-use crate::results::scene::{Outcome, Progress, Rendered, Resolution, Scene, Verdict};
+use crate::results::scene::{Outcome, Progress, Rendered, Resolution, Scene, Verdict, Group};
 use crate::engine::sim::Simulator;
 use nalgebra::DVector;
 use rayon::prelude::*;
@@ -69,14 +70,11 @@ impl MapParams {
     }
 }
 
-/// The truncation for stop stiffness k/k₁: the smallest N ≥ 10 with 4(β_N⁻)³ ≥ 30k.
-pub fn matched_modes(k_over_k1: f64) -> Result<usize, Error> {
-    let k = k_over_k1 * crate::model::galerkin::first_modal_stiffness();
-    let mut n = 10;
-    while 4.0 * crate::model::continuum::free_root(n)?.powi(3) < 30.0 * k {
-        n += 1;
-    }
-    Ok(n)
+/// The truncation for stop stiffness k/k₁: the book's one rule
+/// ([`crate::analysis::convergence::matched_modes`]: at least 10 modes, and as many as one
+/// contact needs for its observables to 1 %).
+pub fn matched_modes(k_over_k1: f64, zeta1: f64) -> Result<usize, Error> {
+    crate::analysis::convergence::matched_modes(k_over_k1, 1e-2, zeta1, 10)
 }
 
 /// What a point shows.
@@ -126,8 +124,7 @@ pub struct MapData {
     pub points: Vec<MapPoint>,
 }
 
-fn point(p: &MapParams, omega: f64, k: f64, index: u64) -> Result<MapPoint, Error> {
-    let modes = matched_modes(k)?;
+fn point(p: &MapParams, omega: f64, k: f64, modes: usize, index: u64) -> Result<MapPoint, Error> {
     let forced = |n| Forced {
         modes: n,
         k_over_k1: k,
@@ -178,12 +175,19 @@ pub fn compute(p: &MapParams, progress: &dyn Progress) -> Result<MapData, Error>
         .iter()
         .flat_map(|&k| p.omega_over_w1.iter().map(move |&w| (w, k)))
         .collect();
+    // N per k, once per k (each is a scan of one contact over N = 1 … 200)
+    let modes: Vec<usize> = p
+        .k_over_k1
+        .par_iter()
+        .map(|&k| matched_modes(k, p.zeta1))
+        .collect::<Result<_, Error>>()?;
     let task = progress.task("r_E map", grid.len() as u64);
     let points = grid
         .par_iter()
         .enumerate()
         .map(|(i, &(w, k))| {
-            let r = point(p, w, k, i as u64);
+            let n = modes[i / p.omega_over_w1.len()];
+            let r = point(p, w, k, n, i as u64);
             task.advance(1);
             r
         })
@@ -200,10 +204,13 @@ pub struct EnergeticMap;
 impl Scene for EnergeticMap {
     const NAME: &'static str = "energetic-map";
     const PAPER: &'static str = "§5.4 and §7 (beyond the paper)";
+    const TITLE: &'static str = "r_E over stop stiffness and frequency";
+    const GIST: &'static str = "r_E “dependent on the dynamics observed” (§7)";
+    const GROUP: Group = Group::Beyond;
     const SUMMARY: &'static str = "r_E (eq 39) over the forcing frequency and the stop stiffness, d0 = 0, zeta1 = 0.01, N by stiffness matching";
     const CLAIM: &'static str = "Energetic coefficients of restitution are \"dependent on the dynamics observed\" (§7).";
     const CHAPTER: &'static str = "fig6.md";
-    const METHOD: &'static str = "at each (ω, k) the compliant model with N from stiffness matching (smallest N ≥ 10 with 4(β_N)³ ≥ 30k) from rest, 1000 periods discarded, eq (39) over one period of the orbit; recomputed with N + 10 modes (orbit and r_E within 0.01, else unconverged) and from a random start (else coexisting)";
+    const METHOD: &'static str = "at each (ω, k) the compliant model with N from stiffness matching (at least 10 modes, and as many as one contact needs for its observables to 1 %) from rest, 1000 periods discarded, eq (39) over one period of the orbit; recomputed with N + 10 modes (orbit and r_E within 0.01, else unconverged) and from a random start (else coexisting)";
     const HEADLINE: &'static [(&'static str, &'static str)] = &[
         ("smallest converged r_E", "smallest r_E"),
         ("largest", "largest r_E"),
@@ -227,10 +234,21 @@ impl Scene for EnergeticMap {
         let mut k = KeyNumbers::default();
         let count = |f: &dyn Fn(&Cell) -> bool| d.points.iter().filter(|p| f(&p.cell)).count() as i64;
         k.integer("points", d.points.len() as i64);
+        // N at each k, as runs "N from k"
+        let mut runs: Vec<String> = Vec::new();
+        let mut last = None;
+        for (i, &kk) in d.params.k_over_k1.iter().enumerate() {
+            let n = d.points[i * d.params.omega_over_w1.len()].modes;
+            if last != Some(n) {
+                runs.push(format!("{n} from {}k₁", crate::base::report::pretty(kk, 3)));
+                last = Some(n);
+            }
+        }
+        k.text("modes along k", runs.join(", "));
         k.integer("points with a value", count(&|c| matches!(c, Cell::Value(_))));
         k.integer("unconverged points", count(&|c| *c == Cell::Unconverged));
         k.integer("not periodic points", count(&|c| *c == Cell::NotPeriodic));
-        k.integer("coexisting points", count(&|c| *c == Cell::Coexisting));
+        k.integer("coexisting points (lower bound)", count(&|c| *c == Cell::Coexisting));
         k.integer("no real value points", count(&|c| *c == Cell::NoRealValue));
         k.integer("no contact points", count(&|c| *c == Cell::NoContact));
         let tol = d.params.convergence_tolerance;

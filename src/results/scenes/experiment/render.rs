@@ -123,33 +123,48 @@ pub fn plot(d: &ExperimentData) -> Result<String, RenderError> {
     Ok(svg)
 }
 
-/// Beam theory at both ends of the modulus range.
+/// Beam theory over the rig's tolerances: each quantity nominal, lowest and highest.
 pub fn table(d: &ExperimentData) -> String {
-    let rows: Vec<Vec<String>> = d
-        .mappings
-        .iter()
-        .map(|m| {
-            vec![
-                format!("{:.0} GPa", m.material.youngs_modulus / 1e9),
-                format!("{:.2}", m.f1_theory),
-                format!("{:.0}", m.length_for_measured * 1e3),
-                format!("{:.2}", m.tip_mass_fraction),
-                format!("{:.1}", m.pin_stiffness / 1e3),
-                format!("{:.0}", m.k_ratio),
-                format!("{:.0}", m.k_ratio_effective_length),
-            ]
-        })
-        .collect();
+    let m = &d.mapping;
+    let row = |name: &str, r: &super::Ranged, scale: f64, decimals: usize| {
+        vec![
+            name.to_string(),
+            format!("{:.*}", decimals, r.nominal * scale),
+            format!("{:.*}", decimals, r.range.0 * scale),
+            format!("{:.*}", decimals, r.range.1 * scale),
+        ]
+    };
+    let rows = vec![
+        row("$f_1$ of the strip (Hz)", &m.f1_theory, 1.0, 2),
+        row("free length for 5.92 Hz (mm)", &m.length_for_measured, 1e3, 0),
+        row("tip mass for 5.92 Hz (× strip's mass)", &m.tip_mass_fraction, 1.0, 2),
+        row("pin stiffness $K$ (kN/m)", &m.pin_stiffness, 1e-3, 1),
+        row("$k/k_1$", &m.k_ratio, 1.0, 0),
+        row("$k/k_1$ at the free length for 5.92 Hz", &m.k_ratio_effective_length, 1.0, 0),
+        row("the pin's first resonance (Hz)", &m.pin_resonance, 1.0, 0),
+        row("the pin's modal tip mass / the strip's", &m.pin_mass_ratio, 1.0, 1),
+    ];
+    markdown_table(&["quantity", "nominal", "lowest", "highest"], &rows)
+}
+
+/// The Figure 9 orbit under eq (37) and in the two sensitivity runs.
+pub fn variants_table(d: &ExperimentData) -> String {
+    let mut rows = vec![vec![
+        "eq (37): mode 1 forced, material damping (the paper's model)".to_string(),
+        d.kind.to_string(),
+        d.contacts_ms.len().to_string(),
+        format!("{:.1}", d.cluster_ms),
+    ]];
+    for v in &d.variants {
+        rows.push(vec![
+            v.name.clone(),
+            v.kind.to_string(),
+            v.contacts_ms.len().to_string(),
+            format!("{:.1}", v.cluster_ms),
+        ]);
+    }
     markdown_table(
-        &[
-            "$E$",
-            "$f_1$ by beam theory (Hz)",
-            "free length for 5.92 Hz (mm)",
-            "tip mass for 5.92 Hz (× strip's mass)",
-            "pin stiffness (kN/m)",
-            "$k/k_1$",
-            "$k/k_1$ at that free length",
-        ],
+        &["model", "orbit", "contact intervals per period", "contact cluster (ms)"],
         &rows,
     )
 }

@@ -5,7 +5,7 @@
 pub mod render;
 
 use crate::base::report::{KeyNumbers, Uncertainty};
-use crate::results::scene::{Outcome, Progress, Rendered, Resolution, Scene, Verdict};
+use crate::results::scene::{Outcome, Progress, Rendered, Resolution, Scene, Verdict, Group};
 use crate::model::continuum;
 use crate::error::ParameterError;
 use crate::model::galerkin::contact_eigenvalues;
@@ -160,6 +160,9 @@ pub struct Fig2;
 impl Scene for Fig2 {
     const NAME: &'static str = "fig2";
     const PAPER: &'static str = "Fig 2, §2.3";
+    const TITLE: &'static str = "Figure 2: the modal contact stiffness";
+    const GIST: &'static str = "N modes give the spectrum only while k ≲ (β_N)³";
+    const GROUP: Group = Group::Paper;
     const SUMMARY: &'static str =
         "eigenvalues of K+ for N = 1, 3, 10 vs exact (beta_i+)^4; lambda_N/(kN)";
     const CLAIM: &'static str = "The Galerkin contact stiffness reproduces the continuum eigenvalues only while $k \\lesssim (\\beta_N)^3$; its highest eigenvalue diverges as $\\lambda_N \\to kN$.";

@@ -12,7 +12,7 @@
 pub mod render;
 
 use crate::base::report::{KeyNumbers, Uncertainty};
-use crate::results::scene::{Outcome, Progress, Rendered, Resolution, Scene, Verdict};
+use crate::results::scene::{Outcome, Progress, Rendered, Resolution, Scene, Verdict, Group};
 use crate::model::asymptotics;
 use crate::error::Error;
 use crate::model::galerkin;
@@ -207,6 +207,9 @@ pub struct Fig3abc;
 impl Scene for Fig3abc {
     const NAME: &'static str = "fig3-abc";
     const PAPER: &'static str = "Fig 3(a)-(c), §4.1-4.3";
+    const TITLE: &'static str = "Figure 3(a)–(c): one contact as k → ∞";
+    const GIST: &'static str = "return velocities approach r_e (N = 1) and [R]₂ (N = 2)";
+    const GROUP: Group = Group::Paper;
     const SUMMARY: &'static str = "one contact of the compliant model, k = eps^-2, vs r_e (eq 19) and [R]_N (eq 29), N = 1, 2, 3, 10";
     const CLAIM: &'static str = "Simulated return velocities approach $r_e$ ($N = 1$) and $[R]_2$ ($N = 2$) as $k \\to \\infty$; mode 1's coefficient of restitution tends to zero.";
     const CHAPTER: &'static str = "fig3abc.md";

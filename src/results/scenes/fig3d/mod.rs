@@ -10,7 +10,7 @@
 pub mod render;
 
 use crate::base::report::{KeyNumbers, Uncertainty};
-use crate::results::scene::{Outcome, Progress, Rendered, Resolution, Scene, Verdict};
+use crate::results::scene::{Outcome, Progress, Rendered, Resolution, Scene, Verdict, Group};
 use crate::model::continuum;
 use crate::error::ParameterError;
 use crate::model::restitution::{self, collocation, equally_spaced_points, stiffness_limit};
@@ -163,6 +163,9 @@ pub struct Fig3d;
 impl Scene for Fig3d {
     const NAME: &'static str = "fig3-d";
     const PAPER: &'static str = "Fig 3(d), §4.4, eq (30)";
+    const TITLE: &'static str = "Figure 3(d): the impact law as N → ∞";
+    const GIST: &'static str = "the rigid law's post-impact velocity does not converge in N";
+    const GROUP: Group = Group::Paper;
     const SUMMARY: &'static str =
         "post-impact velocity profile for v- = e1, r_e = 1, N = 1..100: [R]_N and [R]_C";
     const CLAIM: &'static str =

@@ -17,7 +17,7 @@ pub use claims::Claims;
 use claims::claims;
 
 use crate::base::report::{KeyNumbers, Uncertainty};
-use crate::results::scene::{Outcome, Progress, Rendered, Resolution, Scene, Verdict};
+use crate::results::scene::{Outcome, Progress, Rendered, Resolution, Scene, Verdict, Group};
 use crate::error::{self, Error, ParameterError};
 use crate::analysis::orbit::{self, OrbitKind, SplitMix64};
 use crate::model::problems::{self, Forced};
@@ -390,6 +390,9 @@ pub struct Fig5;
 impl Scene for Fig5 {
     const NAME: &'static str = "fig5";
     const PAPER: &'static str = "Fig 5, §5.3";
+    const TITLE: &'static str = "Figure 5: bifurcations in the stop stiffness";
+    const GIST: &'static str = "truncations agree for k ≲ k₁ and part from about k₂";
+    const GROUP: Group = Group::Paper;
     const SUMMARY: &'static str =
         "bifurcation diagrams in k (impact section), N = 1, 2, 3, 10, random starts";
     const CLAIM: &'static str = "All truncations agree for $k \\lesssim k_1$; they depend on $N$ from about $k_2 \\approx 39.3k_1$; $N = 3$ captures the qualitative features.";

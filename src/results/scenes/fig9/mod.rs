@@ -22,7 +22,7 @@ use crate::analysis::orbit::Settling;
 use crate::error::Error;
 use crate::analysis::orbit::OrbitKind;
 use crate::base::report::{KeyNumbers, Uncertainty};
-use crate::results::scene::{Outcome, Progress, Rendered, Resolution, Scene, Verdict};
+use crate::results::scene::{Outcome, Progress, Rendered, Resolution, Scene, Verdict, Group};
 use serde::Serialize;
 
 /// What the scene computes.
@@ -209,6 +209,9 @@ fn count_text(c: &Count) -> String {
 impl Scene for Fig9 {
     const NAME: &'static str = "fig9";
     const PAPER: &'static str = "Fig 9, §6";
+    const TITLE: &'static str = "Figure 9: the experiment's parameters";
+    const GIST: &'static str = "multiple taps with five separate impacts";
+    const GROUP: Group = Group::Paper;
     const SUMMARY: &'static str = "the 20-mode model at the experiment's parameters: velocity over a period, exact harmonic spectrum, contacts per period and where five occur";
     const CLAIM: &'static str = "At the experiment's parameters the 20-mode model shows \"multiple-tap dynamics with five separate impacts\" and a spectrum with \"contributions from the first four modes\".";
     const CHAPTER: &'static str = "fig9.md";

@@ -19,7 +19,7 @@ use crate::model::problems::{self, Forced};
 use crate::base::report::{KeyNumbers, Uncertainty};
 use crate::model::restitution::{collocation, equally_spaced_points, impulse_response, stiffness_limit};
 use crate::engine::rigid::RigidImpact;
-use crate::results::scene::{Outcome, Progress, Rendered, Resolution, Scene, Verdict};
+use crate::results::scene::{Outcome, Progress, Rendered, Resolution, Scene, Verdict, Group};
 use crate::engine::sim::Simulator;
 use crate::base::verification::fitted_slope_with_error;
 use nalgebra::DVector;
@@ -202,6 +202,9 @@ pub struct RestitutionLaws;
 impl Scene for RestitutionLaws {
     const NAME: &'static str = "restitution";
     const PAPER: &'static str = "§3–4, eqs (11)-(29)";
+    const TITLE: &'static str = "Modal restitution laws (§3–4)";
+    const GIST: &'static str = "the compliant model tends to the stiffness-limit law [R]_N as k → ∞";
+    const GROUP: Group = Group::Paper;
     const SUMMARY: &'static str =
         "modal restitution laws: r_e against the exact 1-DOF ratio, energy, the rigid limit (Nordmark)";
     const CLAIM: &'static str = "Several modal laws satisfy Newton's law at the tip yet differ; the compliant model tends to the stiffness-limit law $[R]_N$ as $k \\to \\infty$ with $r_e = 1 - \\alpha\\pi\\kappa^{-1/2}\\varepsilon$ (eq 19).";

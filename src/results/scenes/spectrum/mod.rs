@@ -7,7 +7,7 @@
 pub mod render;
 
 use crate::base::report::KeyNumbers;
-use crate::results::scene::{Outcome, Progress, Rendered, Resolution, Scene, Verdict};
+use crate::results::scene::{Outcome, Progress, Rendered, Resolution, Scene, Verdict, Group};
 use crate::model::continuum;
 use crate::error::ParameterError;
 use crate::base::golden::GoldenRoots;
@@ -210,6 +210,9 @@ pub struct Spectrum;
 impl Scene for Spectrum {
     const NAME: &'static str = "spectrum";
     const PAPER: &'static str = "§2.1, eqs (3)-(4)";
+    const TITLE: &'static str = "The spectrum with the stop held on (§2.1)";
+    const GIST: &'static str = "roots move from the cantilever's to the clamped–pinned values; k₂ ≈ 39.3k₁";
+    const GROUP: Group = Group::Paper;
     const SUMMARY: &'static str =
         "continuum roots beta_i (free, clamped-pinned, finite k) vs golden; k2/k1; small-k law";
     const CLAIM: &'static str = "The roots of eq (3) move from the cantilever to the clamped-pinned values; $(\\beta_i^+)^4 = (\\beta_i^-)^4 + k + O(k^2)$; $k_2 \\approx 39.3k_1$.";

@@ -17,7 +17,7 @@
 pub mod render;
 
 use crate::base::report::{KeyNumbers, Uncertainty};
-use crate::results::scene::{Outcome, Progress, Rendered, Resolution, Scene, Verdict};
+use crate::results::scene::{Outcome, Progress, Rendered, Resolution, Scene, Verdict, Group};
 use crate::engine::dopri5::{self, Tolerances};
 use crate::error::{Error, ParameterError};
 use crate::model::problems;
@@ -279,6 +279,9 @@ pub struct WorkPrecision;
 impl Scene for WorkPrecision {
     const NAME: &'static str = "work-precision";
     const PAPER: &'static str = "§5.2 (methods)";
+    const TITLE: &'static str = "Error against run time";
+    const GIST: &'static str = "— (the paper gives no error estimates)";
+    const GROUP: Group = Group::Methods;
     const SUMMARY: &'static str =
         "error against run time: exact simulator vs DP5 reference, Fig 4 model, N = 10";
     const CLAIM: &'static str = "— (the paper gives no error estimates)";
