@@ -615,12 +615,11 @@ impl Model {
     fn modal_state<'py>(
         &self,
         py: Python<'py>,
-        s: PyReadonlyArray1<'py, f64>,
-        w: PyReadonlyArray1<'py, f64>,
-        w_t: PyReadonlyArray1<'py, f64>,
+        s: Vec<f64>,
+        w: Vec<f64>,
+        w_t: Vec<f64>,
     ) -> Res<Bound<'py, PyArray1<f64>>> {
-        let get = |a: &PyReadonlyArray1<'py, f64>| -> Vec<f64> { a.as_array().to_vec() };
-        let (s, w, wt) = (get(&s), get(&w), get(&w_t));
+        let wt = w_t;
         let finite = |v: &[f64]| v.iter().all(|x| x.is_finite());
         let sorted = s.windows(2).all(|p| p[1] > p[0]);
         if s.len() < 2

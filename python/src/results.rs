@@ -139,6 +139,13 @@ pub fn scene_run(
 ) -> Res<SceneRun> {
     let spec = scenes::find(name).map_err(value_error)?;
     let r = self::resolution(resolution)?;
+    if let Some(dir) = &out {
+        // refused before the work, as `cantilever scene --out` refuses it
+        if dir.exists() && !dir.is_dir() {
+            let why = "a directory (it is a file or a device)";
+            return Err(bad("out", dir.display(), why));
+        }
+    }
     let reporter = Reporter::new(progress);
     let result = py.detach(|| {
         let output = spec.run(r, &reporter)?;
