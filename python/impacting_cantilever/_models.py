@@ -10,7 +10,7 @@ those lengths per unit time. The oscillator takes its own units.
 
 from __future__ import annotations
 
-from typing import Literal, Union
+from typing import Any, Literal, Union
 
 from . import _core
 
@@ -101,7 +101,7 @@ def oscillator(
     return _core.rigid(model, "newton", restitution)
 
 
-def replace(model: Model, **changes: object) -> Model:
+def replace(model: Model, **changes: Any) -> Model:
     """The same model with some parameters changed, e.g. ``replace(m, omega=2.5)``."""
     p = dict(model.parameters())
     kind = p.pop("model")
@@ -116,10 +116,10 @@ def replace(model: Model, **changes: object) -> Model:
         )
     p.update(changes)
     if kind == "oscillator":
-        base = oscillator(**p)  # type: ignore[arg-type]
+        base = oscillator(**p)
     else:
         modes = p.pop("modes")
-        base = compliant(modes, **p)  # type: ignore[arg-type]
+        base = compliant(modes, **p)
     if law is None:
         return base
-    return rigid(base, law=law, restitution=restitution)  # type: ignore[arg-type]
+    return _core.rigid(base, law, restitution)

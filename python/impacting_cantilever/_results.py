@@ -248,10 +248,10 @@ def _branch(b: dict[str, Any]) -> Branch:
             Bifurcation(
                 kind=f["kind"],
                 parameter=f["parameter"],
-                between=tuple(f["between"]),  # type: ignore[arg-type]
+                between=tuple(f["between"]),
                 index=f["index"],
-                impacts=tuple(f["impacts"]),  # type: ignore[arg-type]
-                stable=tuple(f["stable"]),  # type: ignore[arg-type]
+                impacts=tuple(f["impacts"]),
+                stable=tuple(f["stable"]),
             )
             for f in b["bifurcations"]
         ],

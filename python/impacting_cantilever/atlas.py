@@ -8,10 +8,12 @@ shards from Python and from the command line merge together when they come from 
 build). Fan them out with any executor::
 
     import concurrent.futures as cf
+    import multiprocessing
     import impacting_cantilever as ic
 
     p = ic.atlas.params("test")                       # 9 × 9; "book" is 128 × 128
-    with cf.ProcessPoolExecutor() as pool:
+    spawn = multiprocessing.get_context("spawn")      # not fork: see below
+    with cf.ProcessPoolExecutor(mp_context=spawn) as pool:
         shards = list(pool.map(ic.atlas.compute_shard, [p] * 4, range(4), [4] * 4))
     atlas = ic.atlas.merge(shards, out="out/atlas")   # the scene's files, as atlas-merge
 
@@ -29,7 +31,9 @@ with Dask (``client.map(ic.atlas.compute_shard, [p] * n, range(n), [n] * n)`` th
     ic.atlas.merge([open(f).read() for f in glob.glob("part-*.json")], out="out/atlas")
 
 Each shard uses every core it is given (the rows run in parallel threads, with the
-interpreter released).
+interpreter released). Start worker processes with "spawn" (or "forkserver"), not "fork":
+a process forked after the library's thread pool has started inherits the pool without its
+threads.
 """
 
 from __future__ import annotations
@@ -71,7 +75,7 @@ def compute_shard(
 ) -> str:
     """Shard ``index`` of ``count`` (0 ≤ index < count), as JSON text: picklable, and the
     file format of ``cantilever atlas`` (write it with ``open(path, "w").write(text)``)."""
-    return _core.atlas_shard(json.dumps(params), index, count, progress)  # type: ignore[no-any-return]
+    return _core.atlas_shard(json.dumps(params), index, count, progress)
 
 
 def merge(
@@ -93,12 +97,12 @@ def compute(
 
 
 def compute_sharded(params: Params, count: int, executor: Executor) -> Scene:
-    """The atlas in ``count`` shards on an executor (``ProcessPoolExecutor``, a Dask
-    client's ``get_executor()``, …), merged."""
+    """The atlas in ``count`` shards on an executor (a ``ProcessPoolExecutor`` with the
+    "spawn" context, a Dask client's ``get_executor()``, …), merged."""
     futures = [executor.submit(compute_shard, params, i, count) for i in range(count)]
     return merge(f.result() for f in futures)
 
 
 def build() -> str:
     """This build (version and commit): shards of different builds are not merged."""
-    return _core.atlas_build()  # type: ignore[no-any-return]
+    return _core.atlas_build()

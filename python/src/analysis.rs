@@ -254,9 +254,25 @@ pub fn modes_needed(
     json_to_py(py, &doc)
 }
 
-/// Wall times of `repeats` pure-Rust calls — `find_orbit` from rest with the default
-/// options, or the library runs behind `simulate` — measured inside the extension with no
-/// Python in the loop: the reference for the binding's overhead.
+/// The processor time of the calling thread, in seconds.
+fn thread_time() -> f64 {
+    let mut t = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: clock_gettime writes one timespec through a valid pointer.
+    let ok = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut t) } == 0;
+    if ok {
+        t.tv_sec as f64 + t.tv_nsec as f64 * 1e-9
+    } else {
+        f64::NAN
+    }
+}
+
+/// (wall time, processor time of the thread) of `repeats` pure-Rust calls — `find_orbit`
+/// from rest with the default options, or the library runs behind `simulate` — measured
+/// inside the extension with no Python in the loop: the reference for the binding's
+/// overhead.
 #[pyfunction]
 #[pyo3(signature = (model, what, repeats, periods=0, record=1, dense_per_period=None))]
 pub fn time_rust(
@@ -267,7 +283,7 @@ pub fn time_rust(
     periods: u64,
     record: u64,
     dense_per_period: Option<usize>,
-) -> Res<Vec<f64>> {
+) -> Res<Vec<(f64, f64)>> {
     let x0 = DVector::zeros(2 * model.n());
     let o = OrbitOptions::default();
     let one = || -> Result<(), Error> {
@@ -282,8 +298,8 @@ pub fn time_rust(
     let result = py.detach(|| {
         (0..repeats)
             .map(|_| {
-                let t = Instant::now();
-                one().map(|()| t.elapsed().as_secs_f64())
+                let (wall, cpu) = (Instant::now(), thread_time());
+                one().map(|()| (wall.elapsed().as_secs_f64(), thread_time() - cpu))
             })
             .collect::<Result<Vec<_>, _>>()
     });

@@ -47,14 +47,19 @@ pub fn json_to_py<'py>(py: Python<'py>, v: &Value) -> Res<Bound<'py, PyAny>> {
     })
 }
 
-/// Rows of equal length as a 2-D array (`cols` columns even when there are no rows).
-pub fn matrix<'py, T: numpy::Element + Clone>(
+/// Rows of equal length `cols` as a 2-D array (`cols` columns even when there are none),
+/// copied once into the array's buffer.
+pub fn matrix<'py, 'a, T: numpy::Element + Copy + 'a>(
     py: Python<'py>,
-    rows: &[Vec<T>],
+    rows: impl ExactSizeIterator<Item = &'a [T]>,
     cols: usize,
 ) -> Res<Bound<'py, PyArray2<T>>> {
-    let flat: Vec<T> = rows.iter().flat_map(|r| r.iter().cloned()).collect();
-    let a = Array2::from_shape_vec((rows.len(), cols), flat)
+    let n = rows.len();
+    let mut flat: Vec<T> = Vec::with_capacity(n * cols);
+    for r in rows {
+        flat.extend_from_slice(r);
+    }
+    let a = Array2::from_shape_vec((n, cols), flat)
         .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?;
     Ok(a.into_pyarray(py))
 }

@@ -499,7 +499,7 @@ fn diagonal<'py>(py: Python<'py>, v: &DVector<f64>) -> Bound<'py, PyArray1<f64>>
 
 fn dense<'py>(py: Python<'py>, m: &DMatrix<f64>) -> Res<Bound<'py, PyArray2<f64>>> {
     let rows: Vec<Vec<f64>> = m.row_iter().map(|r| r.iter().copied().collect()).collect();
-    crate::convert::matrix(py, &rows, m.ncols())
+    crate::convert::matrix(py, rows.iter().map(Vec::as_slice), m.ncols())
 }
 
 #[pymethods]

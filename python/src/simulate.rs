@@ -15,7 +15,8 @@ use impacting_cantilever::engine::sim::{
 use impacting_cantilever::error::Error;
 use impacting_cantilever::model::galerkin::Region;
 use nalgebra::DVector;
-use numpy::{PyArray1, PyReadonlyArray1};
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::time::Instant;
@@ -45,8 +46,26 @@ struct EventOut {
     modal_after: Option<Vec<f64>>,
 }
 
-/// One dense sample: t, in contact, tip, tip velocity, the state [η; η̇].
-type DenseRow = (f64, bool, f64, f64, Vec<f64>);
+/// Dense samples, column by column (so that they become numpy arrays without a copy): t, in
+/// contact, tip, tip velocity, and the states [η; η̇] one after another.
+#[derive(Default)]
+struct DenseOut {
+    t: Vec<f64>,
+    contact: Vec<bool>,
+    tip: Vec<f64>,
+    velocity: Vec<f64>,
+    states: Vec<f64>,
+}
+
+impl DenseOut {
+    fn push(&mut self, t: f64, contact: bool, tip: f64, velocity: f64, x: &DVector<f64>) {
+        self.t.push(t);
+        self.contact.push(contact);
+        self.tip.push(tip);
+        self.velocity.push(velocity);
+        self.states.extend_from_slice(x.as_slice());
+    }
+}
 
 /// What a run reports.
 struct Report {
@@ -62,7 +81,7 @@ struct Report {
     outcome: String,
     final_clock: Clock,
     final_state: DVector<f64>,
-    dense: Option<Vec<DenseRow>>,
+    dense: Option<DenseOut>,
 }
 
 /// Reports whole periods as segments pass them (asks for no period boundaries, so it
@@ -87,7 +106,7 @@ impl Observer for Ticker<'_> {
 /// Dense samples of the whole state on the grid t = cycles·T + j·T/per_period.
 struct ModalDense {
     per_period: usize,
-    rows: Vec<DenseRow>,
+    out: DenseOut,
 }
 
 impl Observer for ModalDense {
@@ -104,13 +123,8 @@ impl Observer for ModalDense {
             }
             let (d, v) = seg.tip(s);
             let x = seg.state(s);
-            self.rows.push((
-                seg.start.time() + s,
-                seg.region == Region::Contact,
-                d,
-                v,
-                x.iter().cloned().collect(),
-            ));
+            let contact = seg.region == Region::Contact;
+            self.out.push(seg.start.time() + s, contact, d, v, &x);
             j += 1;
         }
     }
@@ -172,7 +186,7 @@ fn compliant(
     let (mut log, mut max_tip) = (EventLog::default(), TipMax::default());
     let mut dense = ModalDense {
         per_period: args.dense.unwrap_or(1),
-        rows: Vec::new(),
+        out: DenseOut::default(),
     };
     let (mut energy, mut strobe) = (Energy::default(), Strobe::default());
     let end = if args.dense.is_some() {
@@ -227,23 +241,17 @@ fn compliant(
         outcome: "completed".into(),
         final_clock: Clock::at_cycle(period, last_cycle),
         final_state: x,
-        dense: args.dense.map(|_| dense.rows),
+        dense: args.dense.map(|_| dense.out),
     })
 }
 
-/// One dense row of the rigid model: in contact when the tip rests on the stop.
-fn rigid_sample(model: &RigidImpact, t: f64, x: &DVector<f64>) -> DenseRow {
+/// One dense sample of the rigid model: in contact when the tip rests on the stop.
+fn rigid_sample(model: &RigidImpact, t: f64, x: &DVector<f64>, dense: &mut DenseOut) {
     let m = model.sim.model();
     let n = m.modes();
     let tip = m.tip().dot(&x.rows(0, n));
     let velocity = m.tip().dot(&x.rows(n, n));
-    (
-        t,
-        model.at_rest_on_stop(x),
-        tip,
-        velocity,
-        x.iter().copied().collect(),
-    )
+    dense.push(t, model.at_rest_on_stop(x), tip, velocity, x);
 }
 
 /// One period of the window in `pieces` equal pieces, chained (the dense output).
@@ -252,11 +260,11 @@ fn rigid_dense_period(
     x: &DVector<f64>,
     cycle: i64,
     pieces: usize,
-    dense: &mut Vec<DenseRow>,
+    dense: &mut DenseOut,
 ) -> Result<RigidRun, Error> {
     let period = model.sim.period();
-    if dense.is_empty() {
-        dense.push(rigid_sample(model, cycle as f64 * period, x));
+    if dense.t.is_empty() {
+        rigid_sample(model, cycle as f64 * period, x, dense);
     }
     let mut clock = Clock::at_cycle(period, cycle);
     let mut state = x.clone();
@@ -272,7 +280,7 @@ fn rigid_dense_period(
         let piece = model.run_until(&state, clock, next)?;
         state = piece.state.clone();
         clock = piece.clock;
-        dense.push(rigid_sample(model, clock.time(), &state));
+        rigid_sample(model, clock.time(), &state, dense);
         let stop = piece.outcome != Outcome::Completed;
         joined = Some(match joined.take() {
             None => piece,
@@ -303,7 +311,8 @@ fn rigid(
     let (mut x, mut cycle) = (x0.clone(), 0i64);
     let mut outcome = Outcome::Completed;
     let mut final_clock = Clock::at_cycle(period, 0);
-    let (mut events, mut strobe_states, mut dense) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut events, mut strobe_states) = (Vec::new(), Vec::new());
+    let mut dense = DenseOut::default();
     let total = args.periods + args.record;
     let mut done = 0u64;
     while done < total && outcome == Outcome::Completed {
@@ -407,17 +416,17 @@ fn events_dict<'py>(py: Python<'py>, events: &[EventOut], n: usize) -> Res<Bound
         "tip_velocity",
         PyArray1::from_vec(py, col(&|e| e.tip_velocity)),
     )?;
-    let rows: Vec<Vec<f64>> = events.iter().map(|e| e.modal_velocities.clone()).collect();
-    d.set_item("modal_velocities", matrix(py, &rows, n)?)?;
+    let rows = events.iter().map(|e| e.modal_velocities.as_slice());
+    d.set_item("modal_velocities", matrix(py, rows, n)?)?;
     let rigid = events.first().is_some_and(|e| e.outgoing.is_some());
     if rigid {
         let out = col(&|e| e.outgoing.unwrap_or(f64::NAN));
         d.set_item("outgoing_tip_velocity", PyArray1::from_vec(py, out))?;
-        let after: Vec<Vec<f64>> = events
+        let nan = vec![f64::NAN; n];
+        let after = events
             .iter()
-            .map(|e| e.modal_after.clone().unwrap_or_else(|| vec![f64::NAN; n]))
-            .collect();
-        d.set_item("modal_velocities_after", matrix(py, &after, n)?)?;
+            .map(|e| e.modal_after.as_deref().unwrap_or(&nan));
+        d.set_item("modal_velocities_after", matrix(py, after, n)?)?;
     } else {
         d.set_item("outgoing_tip_velocity", py.None())?;
         d.set_item("modal_velocities_after", py.None())?;
@@ -425,22 +434,16 @@ fn events_dict<'py>(py: Python<'py>, events: &[EventOut], n: usize) -> Res<Bound
     Ok(d)
 }
 
-fn dense_dict<'py>(py: Python<'py>, rows: &[DenseRow], n: usize) -> Res<Bound<'py, PyDict>> {
+fn dense_dict<'py>(py: Python<'py>, dense: DenseOut, n: usize) -> Res<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
-    d.set_item(
-        "t",
-        PyArray1::from_vec(py, rows.iter().map(|r| r.0).collect()),
-    )?;
-    let contact: Vec<bool> = rows.iter().map(|r| r.1).collect();
-    d.set_item("in_contact", PyArray1::from_vec(py, contact))?;
-    d.set_item(
-        "tip",
-        PyArray1::from_vec(py, rows.iter().map(|r| r.2).collect()),
-    )?;
-    let v: Vec<f64> = rows.iter().map(|r| r.3).collect();
-    d.set_item("tip_velocity", PyArray1::from_vec(py, v))?;
-    let states: Vec<Vec<f64>> = rows.iter().map(|r| r.4.clone()).collect();
-    d.set_item("state", matrix(py, &states, 2 * n)?)?;
+    let rows = dense.t.len();
+    d.set_item("t", PyArray1::from_vec(py, dense.t))?;
+    d.set_item("in_contact", PyArray1::from_vec(py, dense.contact))?;
+    d.set_item("tip", PyArray1::from_vec(py, dense.tip))?;
+    d.set_item("tip_velocity", PyArray1::from_vec(py, dense.velocity))?;
+    let states = Array2::from_shape_vec((rows, 2 * n), dense.states)
+        .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?;
+    d.set_item("state", states.into_pyarray(py))?;
     Ok(d)
 }
 
@@ -526,8 +529,8 @@ pub fn simulate<'py>(
     d.set_item("final_cycle", c.cycles)?;
     d.set_item("final_phase", c.offset / c.period)?;
     d.set_item("final_state", crate::model::state(py, &report.final_state))?;
-    match &report.dense {
-        Some(rows) => d.set_item("dense", dense_dict(py, rows, n)?)?,
+    match report.dense {
+        Some(dense) => d.set_item("dense", dense_dict(py, dense, n)?)?,
         None => d.set_item("dense", py.None())?,
     }
     d.set_item("start", from)?;
