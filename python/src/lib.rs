@@ -15,6 +15,7 @@ mod convert;
 mod model;
 mod results;
 mod simulate;
+mod spec;
 
 use impacting_cantilever::error::{Error, ParameterError};
 use pyo3::exceptions::PyValueError;

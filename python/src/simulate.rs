@@ -24,6 +24,9 @@ use std::time::Instant;
 /// Periods per chunk of a long rigid run (one progress step).
 const CHUNK: u64 = 1000;
 
+/// The most numbers of dense output a run may hold (2 GB of doubles).
+const MAX_DENSE_VALUES: f64 = 2.5e8;
+
 /// What a run asks for.
 struct Args {
     periods: u64,
@@ -492,6 +495,19 @@ pub fn simulate<'py>(
             periodicity_tolerance,
             "a number in (0, 1)",
         ));
+    }
+    if let Some(per) = dense {
+        // the dense output is held in memory (as the command line holds it before writing
+        // its file): refuse one that would not fit rather than abort the interpreter
+        let values = record as f64 * per as f64 * (2 * model.n() + 4) as f64;
+        if values > MAX_DENSE_VALUES {
+            return Err(bad(
+                "dense_per_period",
+                format!("{per} with record = {record} and N = {}", model.n()),
+                "at most 2.5e8 numbers of dense output in all, record × dense_per_period × \
+                 (2N + 4) (2 GB): record fewer periods or sample fewer per period",
+            ));
+        }
     }
     let (x0, from) = model.start(start, seed)?;
     let args = Args {

@@ -59,8 +59,25 @@ class Cli:
 
 
 @pytest.fixture(scope="session")
-def cli() -> Cli:
-    return Cli(_binary())
+def cli(tmp_path_factory: pytest.TempPathFactory) -> Cli:
+    """The command line, checked to come from the same build of the library as the
+    extension (the same commit and state of the tree): otherwise the comparisons compare two
+    versions of the code."""
+    c = Cli(_binary())
+    import impacting_cantilever as ic
+
+    out = tmp_path_factory.mktemp("spectrum")
+    theirs = c.json("scene", "spectrum", "--out", str(out))["provenance"]
+    ours = ic.citation.build()
+    if (theirs["commit"], theirs["dirty"]) != (ours["commit"], ours["dirty"]):
+        pytest.exit(
+            f"the command line ({theirs['commit'][:12]}, dirty: {theirs['dirty']}) and the "
+            f"Python extension ({str(ours['commit'])[:12]}, dirty: {ours['dirty']}) come from "
+            "different builds: rebuild both from this tree (cargo build --release; "
+            "pip install ./python)",
+            returncode=2,
+        )
+    return c
 
 
 def same_bits(a: Any, b: Any) -> bool:

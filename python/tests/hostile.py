@@ -55,6 +55,7 @@ CASES = [
     ("int start", lambda: ic.simulate(m, 1, start=[0, 0, 0, 0, 0, 1]), True),
     ("dense 0", lambda: ic.simulate(m, 1, dense_per_period=0), False),
     ("dense huge", lambda: ic.simulate(m, 1, dense_per_period=10**9), False),
+    ("dense of 1e9 samples", lambda: ic.simulate(m, 0, 100_000, dense_per_period=10_000), False),
     ("NaN tolerance", lambda: ic.simulate(m, 1, periodicity_tolerance=nan), False),
     ("negative max period", lambda: ic.simulate(m, 1, max_period=-4), False),
     ("progress not callable", lambda: ic.simulate(m, 10, progress=3), False),  # type: ignore[arg-type]
