@@ -101,25 +101,29 @@ def oscillator(
     return _core.rigid(model, "newton", restitution)
 
 
-def replace(model: Model, **changes: Any) -> Model:
-    """The same model with some parameters changed, e.g. ``replace(m, omega=2.5)``."""
-    p = dict(model.parameters())
+def _from_parameters(p: dict[str, Any]) -> Model:
+    """The model of ``Model.parameters()`` (how a model is pickled)."""
+    p = dict(p)
     kind = p.pop("model")
     law = p.pop("law", None)
     restitution = p.pop("restitution", None)
-    law = changes.pop("law", law)
-    restitution = changes.pop("restitution", restitution)
-    unknown = set(changes) - set(p)
-    if unknown:
-        raise ValueError(
-            f"invalid parameter {sorted(unknown)[0]}: got a value; allowed: one of {', '.join(p)}"
-        )
-    p.update(changes)
     if kind == "oscillator":
         base = oscillator(**p)
     else:
-        modes = p.pop("modes")
-        base = compliant(modes, **p)
-    if law is None:
-        return base
-    return _core.rigid(base, law, restitution)
+        base = compliant(p.pop("modes"), **p)
+    return base if law is None else _core.rigid(base, law, restitution)
+
+
+def replace(model: Model, **changes: Any) -> Model:
+    """The same model with some parameters changed, e.g. ``replace(m, omega=2.5)`` (or
+    ``law=``, ``restitution=`` for the rigid model)."""
+    p = dict(model.parameters())
+    allowed = set(p) - {"model"} | {"law", "restitution"}
+    unknown = set(changes) - allowed
+    if unknown:
+        raise ValueError(
+            f"invalid parameter {sorted(unknown)[0]}: got a value; "
+            f"allowed: one of {', '.join(sorted(allowed))}"
+        )
+    p.update(changes)
+    return _from_parameters(p)

@@ -488,6 +488,14 @@ impl Model {
         Ok(d)
     }
 
+    /// Pickling (for process pools, Dask): the model is rebuilt from its parameters.
+    fn __reduce__<'py>(&self, py: Python<'py>) -> Res<(Bound<'py, PyAny>, (Bound<'py, PyDict>,))> {
+        let rebuild = py
+            .import("impacting_cantilever._models")?
+            .getattr("_from_parameters")?;
+        Ok((rebuild, (self.parameters(py)?,)))
+    }
+
     fn __repr__(&self) -> String {
         let law = match self.law {
             Some((law, r)) => format!(", rigid stop, law {}, r = {r}", law.name()),

@@ -99,6 +99,7 @@ CASES = [
     ("profile decreasing", lambda: m.modal_state([1, 0], [0, 0], [0, 0]), False),
     ("profile short", lambda: m.modal_state([0.2, 1], [0, 0], [0, 0]), False),
     ("replace unknown", lambda: ic.replace(m, bogus=1), False),
+    ("unpickle nonsense", lambda: ic._models._from_parameters({"model": "boat"}), False),
     ("replace bad", lambda: ic.replace(m, modes=0), False),
     ("problem N = 0", lambda: ic.problems.figure4(0), False),
     ("problem gap NaN", lambda: ic.problems.figure9(10, nan), False),

@@ -165,3 +165,26 @@ def test_a_callback_that_raises_stops_the_work_with_its_exception() -> None:
     with pytest.raises(KeyError, match="stop here"):
         ic.simulate(rigid(gap=0.5), 3000, progress=stop)
     assert np.isfinite(ic.find_orbit(ic.problems.figure4(1)).spectral_radius)
+
+
+def test_models_pickle_and_serve_many_threads_at_once() -> None:
+    """A model travels to another process by pickling (rebuilt from its parameters, the same
+    bits), and one model serves several threads at once, each getting the same orbit."""
+    import pickle
+    from concurrent.futures import ThreadPoolExecutor
+
+    models = [
+        ic.problems.figure4(3),
+        ic.rigid(ic.compliant(1, zeta1=0.01, omega=2), law="newton", restitution=0.8),
+        ic.oscillator(stiffness=1.0, damping=0.05, forcing=1.0, omega=0.8, gap=0.5,
+                      stop_stiffness=100.0),
+    ]  # fmt: skip
+    for m in models:
+        again = pickle.loads(pickle.dumps(m))
+        assert again.parameters() == m.parameters() and repr(again) == repr(m)
+        a, b = ic.simulate(m, 50, 4), ic.simulate(again, 50, 4)
+        assert a.final_state.tobytes() == b.final_state.tobytes()
+    m = models[0]
+    with ThreadPoolExecutor(4) as pool:
+        orbits = list(pool.map(lambda _: ic.find_orbit(m), range(4)))
+    assert len({o.multipliers.tobytes() for o in orbits}) == 1
