@@ -1,0 +1,179 @@
+"""Regenerates the measured parts of the book's chapter *From Python* (book/src/python.md):
+
+- ``book/src/python/example-output.txt``: what the chapter's worked example
+  (``book/src/python/example.py``) prints, and ``bifurcation.png``, the figure it draws
+  (when matplotlib is installed);
+- ``book/src/python/error-example.txt``: the message a bad argument raises;
+- ``book/src/python/overhead.md`` and ``overhead.json``: the cost of a call from Python
+  against the same call in Rust, measured now on this machine.
+
+Run it from the repository root with the package installed (``pip install "./python[plot]"``):
+
+    python python/bench/chapter.py
+
+The Rust reference is timed inside the extension (``_core.time_rust``): the same library
+calls with no Python in the loop, so the difference is exactly what the binding adds —
+argument checks, releasing and retaking the interpreter, and turning results into numpy
+arrays and result objects.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import json
+import os
+import platform
+import runpy
+import statistics
+import time
+from pathlib import Path
+from typing import Any, Callable
+
+import numpy as np
+
+import impacting_cantilever as ic
+from impacting_cantilever import _core
+
+ROOT = Path(__file__).resolve().parents[2]
+OUT = ROOT / "book" / "src" / "python"
+
+
+def error_example() -> None:
+    """The message a bad argument raises, as the chapter shows it."""
+    call = "ic.compliant(3, zeta1=0, omega=2)"
+    try:
+        ic.compliant(3, zeta1=0, omega=2)
+    except ValueError as e:
+        text = f">>> {call}\nValueError: {e}\n"
+    else:
+        raise AssertionError(f"{call} was accepted")
+    (OUT / "error-example.txt").write_text(text)
+
+
+def run_example() -> None:
+    """Runs the worked example in OUT (so that its figure lands there) and keeps its output."""
+    buffer = io.StringIO()
+    cwd = os.getcwd()
+    os.chdir(OUT)
+    try:
+        with contextlib.redirect_stdout(buffer):
+            runpy.run_path(str(OUT / "example.py"), run_name="__main__")
+    finally:
+        os.chdir(cwd)
+    (OUT / "example-output.txt").write_text(buffer.getvalue())
+    print(buffer.getvalue())
+
+
+def python_times(call: Callable[[], object]) -> tuple[float, float]:
+    """(wall time, processor time of this thread) of one call."""
+    wall, cpu = time.perf_counter(), time.thread_time()
+    call()
+    return time.perf_counter() - wall, time.thread_time() - cpu
+
+
+# (what the reader sees, the Python call, the Rust reference's arguments, repeats)
+def cases() -> list[tuple[str, Callable[[], object], dict[str, Any], int]]:
+    fig4_3, fig4_10 = ic.problems.figure4(3), ic.problems.figure4(10)
+    return [
+        (
+            "`simulate(figure4(3), periods=0, record=1)`: one forcing period",
+            lambda: ic.simulate(fig4_3, 0, 1),
+            {"model": fig4_3, "what": "simulate", "periods": 0, "record": 1},
+            2000,
+        ),
+        (
+            "`find_orbit(figure4(10))`: 1065 periods and Newton shooting",
+            lambda: ic.find_orbit(fig4_10),
+            {"model": fig4_10, "what": "find_orbit"},
+            50,
+        ),
+        (
+            "`simulate(figure4(10), 100, 100, dense_per_period=200)`: 20 000 dense samples of 20 states",
+            lambda: ic.simulate(fig4_10, 100, 100, dense_per_period=200),
+            {
+                "model": fig4_10,
+                "what": "simulate",
+                "periods": 100,
+                "record": 100,
+                "dense_per_period": 200,
+            },
+            50,
+        ),
+    ]
+
+
+def seconds(x: float) -> str:
+    if abs(x) < 1e-5:
+        return f"{x * 1e6:.1f} µs"
+    if abs(x) < 1e-3:
+        return f"{x * 1e6:.0f} µs"
+    if abs(x) < 1:
+        return f"{x * 1e3:.2f} ms"
+    return f"{x:.2f} s"
+
+
+def measure() -> None:
+    rows, raw, overheads = [], [], []
+    for label, call, reference, repeats in cases():
+        call()  # warm up (first-use tables, page faults)
+        _core.time_rust(repeats=1, **reference)
+        rust, py = [], []
+        for _ in range(repeats):  # interleaved, so that a slow spell of the machine hits both
+            rust += _core.time_rust(repeats=1, **reference)
+            py.append(python_times(call))
+        # processor time of the calling thread (the work is single-threaded), the fastest of
+        # the repeats: what the other processes on the machine disturb least
+        r, p = min(c for _, c in rust), min(c for _, c in py)
+        # how much the Rust call alone varies between repeats: the resolution of the overhead
+        spread = statistics.median(c for _, c in rust) - r
+        def stats(samples: list[tuple[float, float]]) -> dict[str, float]:
+            walls, cpus = [w for w, _ in samples], [c for _, c in samples]
+            return {
+                "thread_seconds_min": min(cpus),
+                "thread_seconds_median": statistics.median(cpus),
+                "wall_seconds_min": min(walls),
+                "wall_seconds_median": statistics.median(walls),
+            }
+
+        raw.append({"call": label, "repeats": repeats, "rust": stats(rust), "python": stats(py)})
+        overheads.append((p - r, (p - r) / r, spread))
+        rows.append(
+            f"| {label} | {seconds(r)} | {seconds(p)} | {seconds(p - r)} | "
+            f"{100 * (p - r) / r:+.1f} % | {seconds(spread)} |"
+        )
+    info = (
+        f"Measured with {platform.python_implementation()} {platform.python_version()} and "
+        f"numpy {np.__version__} on {os.cpu_count()} cores ({platform.machine()}), "
+        f"impacting-cantilever {ic.__version__} (commit {ic.citation.build()['commit'][:12]}), "
+        f"{time.strftime('%Y-%m-%d', time.gmtime())}; processor time of the calling thread, the fastest of the repeated calls, Rust and Python interleaved."
+    )
+    table = "\n".join(
+        [
+            "| call | Rust | Python | overhead | relative | spread of the Rust call |",
+            "|---|---:|---:|---:|---:|---:|",
+            *rows,
+        ]
+    )
+    def said(overhead: float, relative: float, spread: float) -> str:
+        if abs(overhead) <= spread:
+            return f"less than the call's own spread between repeats ({seconds(spread)})"
+        return f"{seconds(overhead)} ({100 * relative:.1f} %)"
+
+    small, orbit, dense = overheads
+    summary = (
+        f"The binding adds {seconds(small[0])} to the shortest call, a single forcing period "
+        f"({100 * small[1]:.0f} % of it); to a periodic orbit it adds {said(*orbit)}, and to a "
+        f"run whose dense output of several megabytes becomes numpy arrays {said(*dense)}. "
+        "The spread is the median of the Rust call's repeats less their fastest."
+    )
+    (OUT / "overhead.md").write_text(f"{table}\n\n{info}\n\n{summary}\n")
+    (OUT / "overhead.json").write_text(json.dumps({"info": info, "calls": raw}, indent=1) + "\n")
+    print(table)
+    print(info)
+
+
+if __name__ == "__main__":
+    error_example()
+    run_example()
+    measure()

@@ -1,0 +1,78 @@
+"""The impacting cantilever from Python.
+
+Reproduces J. T. Melcher, A. R. Champneys & D. J. Wagg, *The impacting cantilever: modal
+non-convergence and the importance of stiffness matching*, Phil. Trans. R. Soc. A 371
+(2013) 20120434, with the exact engine of the Rust library ``impacting-cantilever``: every
+number here is computed by the same code as the ``cantilever`` command line, bit for bit.
+
+>>> import impacting_cantilever as ic
+>>> orbit = ic.find_orbit(ic.problems.figure4(10))        # the Fig 4 N = 10 orbit
+>>> orbit.multipliers                                    # Floquet multipliers, complex
+>>> sim = ic.simulate(ic.problems.figure4(3), periods=1000, record=32, dense_per_period=200)
+>>> sim.events.time, sim.dense.tip                       # numpy arrays
+
+Units (the paper's §5): time of the non-dimensional beam (EI = ρA = L = 1); stop stiffness k
+in units of k₁ = (β₁⁻)⁴ ≈ 12.36; forcing frequency ω in units of (β₁⁻)² ≈ 3.516; lengths in
+units of the free tip amplitude at resonance. Bad input raises ``ValueError`` with the
+library's one-line message (the parameter, what was given, what is allowed).
+"""
+
+from __future__ import annotations
+
+from . import _core, atlas, citation, problems, scenes
+from ._api import (
+    Progress,
+    continue_branch,
+    energetic_restitution,
+    find_orbit,
+    modes_needed,
+    simulate,
+)
+from ._core import __version__
+from ._models import Model, compliant, oscillator, replace, rigid
+from ._results import (
+    Bifurcation,
+    Branch,
+    Continuation,
+    Dense,
+    EnergeticRestitution,
+    Events,
+    ModesNeeded,
+    Orbit,
+    Simulation,
+    Study,
+)
+
+#: (β₁⁻)², the frequency unit, and k₁ = (β₁⁻)⁴, the stiffness unit.
+FREQUENCY_UNIT, STIFFNESS_UNIT = _core.units()
+
+__all__ = [
+    "__version__",
+    "FREQUENCY_UNIT",
+    "STIFFNESS_UNIT",
+    "Model",
+    "compliant",
+    "rigid",
+    "oscillator",
+    "replace",
+    "problems",
+    "simulate",
+    "find_orbit",
+    "continue_branch",
+    "energetic_restitution",
+    "modes_needed",
+    "scenes",
+    "atlas",
+    "citation",
+    "Progress",
+    "Simulation",
+    "Events",
+    "Dense",
+    "Orbit",
+    "Branch",
+    "Bifurcation",
+    "Continuation",
+    "EnergeticRestitution",
+    "ModesNeeded",
+    "Study",
+]

@@ -1,0 +1,267 @@
+"""The computations: ``simulate``, ``find_orbit``, ``continue_branch``,
+``energetic_restitution`` and ``modes_needed``. Each is one call of the Rust library, run
+with the interpreter released (other Python threads go on); a progress callback
+``progress(what, done, total)`` is called about ten times a second where given (``total``
+is 0 when it is not known in advance). A callback that raises, or Ctrl-C, stops the work
+where it can stop early and raises when the call returns.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Callable, Literal, Optional
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from . import _core
+from ._models import Model
+from ._results import (
+    Continuation,
+    Dense,
+    EnergeticRestitution,
+    Events,
+    ModesNeeded,
+    Orbit,
+    Simulation,
+    Study,
+    _branch,
+)
+
+#: ``progress(what, done, total)``.
+Progress = Optional[Callable[[str, int, int], object]]
+
+
+def _state(start: Optional[ArrayLike]) -> Optional[NDArray[np.float64]]:
+    """A start state as a contiguous float vector (its length and values are checked by
+    the library)."""
+    if start is None:
+        return None
+    x = np.ascontiguousarray(start, dtype=np.float64)
+    if x.ndim != 1:
+        raise ValueError(
+            f"invalid start: got an array of shape {x.shape}; allowed: a vector of 2N numbers [η; η̇]"
+        )
+    return x
+
+
+def simulate(
+    model: Model,
+    periods: int,
+    record: int = 32,
+    *,
+    start: Optional[ArrayLike] = None,
+    seed: Optional[int] = None,
+    dense_per_period: Optional[int] = None,
+    periodicity_tolerance: float = 1e-9,
+    max_period: int = 32,
+    progress: Progress = None,
+) -> Simulation:
+    """Simulates the model exactly (§5.1–5.2): ``periods`` forcing periods discarded, then
+    ``record`` periods recorded — what ``cantilever simulate`` does, to the bit.
+
+    Args:
+        model: the compliant or rigid model.
+        periods: forcing periods simulated and discarded (0 to 1e8).
+        record: periods recorded after that (0 to 1e5).
+        start: the initial modal state [η; η̇] (2N numbers, |entries| ≤ 1e6); rest if
+            neither it nor ``seed`` is given.
+        seed: start from the random state of this seed (``Model.random_state``).
+        dense_per_period: dense output of the window, this many samples per forcing
+            period (1 to 10 000; at most 2.5e8 numbers in all, record × dense_per_period ×
+            (2N + 4)); None for none.
+        periodicity_tolerance: relative tolerance of the period search on the strobe
+            (§5.2's 1e-9).
+        max_period: the largest period m searched (1 to 1000; also ≤ record/2).
+        progress: ``progress(what, done, total)`` in forcing periods.
+
+    Returns:
+        A :class:`Simulation`: events as numpy arrays, dense output, the period m and
+        contacts n, the certified max tip, the energy imbalance and the final state.
+
+    Raises:
+        ValueError: bad input (the library's one-line message), or a run that would break
+            an invariant of the exact solution.
+    """
+    d = _core.simulate(
+        model,
+        periods,
+        record,
+        _state(start),
+        seed,
+        dense_per_period,
+        periodicity_tolerance,
+        max_period,
+        progress,
+    )
+    d["events"] = Events(**d["events"])
+    if d["dense"] is not None:
+        d["dense"] = Dense(**d["dense"])
+    return Simulation(**d)
+
+
+def find_orbit(
+    model: Model,
+    start: Optional[ArrayLike] = None,
+    *,
+    seed: Optional[int] = None,
+    transient: int = 1000,
+    window: int = 65,
+    period: Optional[int] = None,
+    period_tolerance: float = 1e-3,
+    max_iterations: int = 40,
+    restitution: bool = False,
+) -> Orbit:
+    """The periodic orbit the model settles on from ``start`` (rest by default): the
+    transient, the period m read from the strobe of a window (or given), Newton shooting
+    with the exact monodromy, the Floquet multipliers, and r_E (eq 39) if asked for.
+
+    The same as ``cantilever orbit --periods TRANSIENT --record WINDOW [--period M]``.
+
+    Args:
+        model: the compliant or rigid model.
+        start: the initial state [η; η̇]; ``seed``: a random start instead.
+        transient: forcing periods run before the orbit is read (0 to 1e8).
+        window: periods whose strobe gives m (2 to 10 000; m ≤ min(64, window − 1)).
+        period: the period m, when known (1 to 64).
+        period_tolerance: how near the strobe must repeat for m to be taken (relative).
+        max_iterations: Newton steps allowed (1 to 1000).
+        restitution: also r_E (eq 39) over one period (compliant model only).
+
+    Raises:
+        ValueError: bad input, no period within the window, or a Newton that does not
+            converge — with the library's message and the way out.
+    """
+    d = _core.find_orbit(
+        model,
+        _state(start),
+        seed,
+        transient,
+        window,
+        period,
+        period_tolerance,
+        max_iterations,
+        restitution,
+    )
+    return Orbit(**d)
+
+
+def continue_branch(
+    model: Model,
+    parameter: Literal["stop_stiffness", "omega"],
+    to: float,
+    *,
+    one_way: bool = False,
+    max_step: float = 0.02,
+    doubling_up_to: int = 8,
+    start: Optional[ArrayLike] = None,
+    seed: Optional[int] = None,
+    transient: int = 1000,
+    window: int = 65,
+    period: Optional[int] = None,
+    progress: Progress = None,
+) -> Continuation:
+    """The branch of periodic orbits through the model's orbit, continued in k/k₁
+    (``"stop_stiffness"``) or ω/(β₁⁻)² (``"omega"``) by pseudo-arclength on the shooting
+    problem, with its folds, period doublings (followed to the doubled branch),
+    Neimark–Sacker points and grazings — ``cantilever continue``, to the bit.
+
+    Args:
+        model: a compliant cantilever model; its value of the parameter is the start.
+        to: where to continue to (> 0); unless ``one_way``, the branch is also traced the
+            other way, to start²/to.
+        max_step: largest step in ln p, also the spacing of the points (1e-4 to 0.2).
+        doubling_up_to: follow period doublings up to this period (1 = none; up to 64).
+        start, seed, transient, window, period: the start orbit, as in :func:`find_orbit`.
+        progress: ``progress("continuation: orbits", models built, 0)``.
+    """
+    d = _core.continue_branch(
+        model,
+        parameter,
+        to,
+        one_way,
+        max_step,
+        doubling_up_to,
+        _state(start),
+        seed,
+        transient,
+        window,
+        period,
+        progress,
+    )
+    return Continuation(
+        parameter=d["parameter"],
+        start=d["start"],
+        modes=d["modes"],
+        branches=[_branch(b) for b in d["branches"]],
+        document=d,
+    )
+
+
+def _coefficient(c: Any) -> Optional[float]:
+    return c["Value"] if isinstance(c, dict) and "Value" in c else None
+
+
+def energetic_restitution(
+    model: Model,
+    start: Optional[ArrayLike] = None,
+    *,
+    seed: Optional[int] = None,
+    transient: int = 1000,
+    window: int = 40,
+) -> EnergeticRestitution:
+    """The energetic coefficient of restitution r_E (eq 39) of the orbit the compliant model
+    settles on: ``transient`` periods, the orbit labelled over ``window`` periods (2 to
+    10 000), and if periodic, the work of the contact force on mode 1 over one period of it
+    (the Figure 6 computation)."""
+    d = _core.energetic_restitution(model, _state(start), seed, transient, window)
+    kind = d["kind"]
+    m = n = None
+    if isinstance(kind, dict) and "Periodic" in kind:
+        m, n = kind["Periodic"]["m"], kind["Periodic"]["n"]
+    return EnergeticRestitution(
+        label=f"({m},{n})" if m is not None else "not periodic",
+        period_m=m,
+        impacts_n=n,
+        residual=d["residual"],
+        r_E=_coefficient(d["coefficient"]),
+        r_E_energy_change=_coefficient(d["energy_change_coefficient"]),
+        contacts=d["contacts"],
+        state=np.array(d["state"], dtype=np.float64),
+        cycle=d["cycle"],
+        document=d,
+    )
+
+
+def modes_needed(
+    stop_stiffness: float, tolerance: float = 1e-3, zeta1: float = 0.01
+) -> ModesNeeded:
+    """How many Galerkin modes N resolve a stop of stiffness k/k₁ (1e-3 to 1e6) to a relative
+    accuracy (1e-9 to 0.5): one contact simulated for N = 1 … 200, each observable (contact
+    duration, exit tip velocity, first-mode velocity after) extrapolated to N → ∞ —
+    ``cantilever modes-needed``. Takes about a second."""
+    d = _core.modes_needed(stop_stiffness, tolerance, zeta1)
+    needed = d["needed"]
+    scanned = needed.get("Scanned") if isinstance(needed, dict) else None
+    beyond = needed.get("Beyond") if isinstance(needed, dict) else None
+    studies = {
+        name: Study(
+            sizes=np.array(s["sizes"], dtype=np.int64),
+            values=np.array(s["values"], dtype=np.float64),
+            limit=s["limit"],
+            uncertainty=s["uncertainty"],
+            order=s["order"],
+            order_change=s["order_change"],
+            scale=s["scale"],
+        )
+        for name, s in d["studies"]
+    }
+    return ModesNeeded(
+        stop_stiffness=d["stop_stiffness_over_k1"],
+        tolerance=d["tolerance"],
+        needed=scanned,
+        estimate=beyond["estimate"] if beyond else None,
+        hardest=d["hardest"],
+        studies=studies,
+        criterion=d["criterion"],
+        document=d,
+    )

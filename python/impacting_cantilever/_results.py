@@ -1,0 +1,350 @@
+"""The results of the computations: plain numpy arrays in small frozen dataclasses.
+
+Units as in :mod:`impacting_cantilever._models`: time of the non-dimensional beam, lengths
+in units of the free tip amplitude at resonance, velocities in those lengths per unit time,
+stop stiffness in units of k₁ = (β₁⁻)⁴ and frequencies in units of (β₁⁻)².
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Optional
+
+import numpy as np
+from numpy.typing import NDArray
+
+
+def _opt(x: Optional[float], fmt: str) -> str:
+    return "—" if x is None else format(x, fmt)
+
+
+@dataclass(frozen=True, repr=False)
+class Events:
+    """The contact events of a recorded window (impacts, for the rigid model), in order."""
+
+    #: t, the time of each event (non-dimensional beam time).
+    time: NDArray[np.float64]
+    #: The forcing cycle it falls in (t = (cycle + phase)·T).
+    cycle: NDArray[np.int64]
+    #: Its forcing phase, as a fraction of the period T in [0, 1).
+    phase: NDArray[np.float64]
+    #: Entering contact (True) or leaving it; every rigid impact is an entry.
+    entering: NDArray[np.bool_]
+    #: A touch with zero normal velocity to round-off (compliant): recorded, no switch.
+    grazing: NDArray[np.bool_]
+    #: The tip velocity φ(1)ᵀη̇ at the event (rigid: before the impact).
+    tip_velocity: NDArray[np.float64]
+    #: The modal velocities η̇ at each event, shape (events, N) (rigid: before the impact).
+    modal_velocities: NDArray[np.float64]
+    #: Rigid model: the tip velocity after each impact (None for the compliant model).
+    outgoing_tip_velocity: Optional[NDArray[np.float64]]
+    #: Rigid model: η̇ after each impact, shape (events, N) (None for the compliant model).
+    modal_velocities_after: Optional[NDArray[np.float64]]
+
+    def __len__(self) -> int:
+        return len(self.time)
+
+    def __repr__(self) -> str:
+        entries = int(np.count_nonzero(self.entering & ~self.grazing))
+        return f"Events({len(self)} events, {entries} entries into contact)"
+
+
+@dataclass(frozen=True, repr=False)
+class Dense:
+    """Dense output of a recorded window on the grid t = cycle·T + j·T/per_period."""
+
+    #: t of each sample.
+    t: NDArray[np.float64]
+    #: In contact with the stop (rigid: resting on it).
+    in_contact: NDArray[np.bool_]
+    #: The tip displacement d = φ(1)ᵀη.
+    tip: NDArray[np.float64]
+    #: The tip velocity ḋ.
+    tip_velocity: NDArray[np.float64]
+    #: The modal state [η; η̇] of each sample, shape (samples, 2N).
+    state: NDArray[np.float64]
+
+    def __len__(self) -> int:
+        return len(self.t)
+
+    def __repr__(self) -> str:
+        return f"Dense({len(self)} samples of t, in_contact, tip, tip_velocity, state)"
+
+
+@dataclass(frozen=True, repr=False)
+class Simulation:
+    """What :func:`~impacting_cantilever.simulate` gives: a transient discarded, then a
+    recorded window."""
+
+    events: Events
+    #: Dense output of the window (None unless ``dense_per_period`` was given).
+    dense: Optional[Dense]
+    #: The smallest period m ≤ ``max_period_searched`` whose stroboscopic samples repeat to
+    #: ``periodicity_tolerance`` (relative) at the end of the window, else None.
+    period_m: Optional[int]
+    #: n: entries into contact (rigid: impacts) per period m, None when not periodic.
+    impacts_n: Optional[int]
+    #: The smallest strobe residual found (None with fewer than 2 recorded periods).
+    periodicity_residual: Optional[float]
+    periodicity_tolerance: float
+    #: min(max_period, record/2), the largest period tested.
+    max_period_searched: int
+    #: Entries into contact (impacts) in the whole recorded window.
+    contacts_in_window: int
+    #: The certified largest tip displacement of the window (compliant), with when and to
+    #: what tolerance: no value of d in the window exceeds it by more.
+    max_tip: Optional[float]
+    max_tip_time: Optional[float]
+    max_tip_tolerance: Optional[float]
+    #: The unaccounted part of the exact energy budget of the whole run, relative (compliant).
+    energy_imbalance: Optional[float]
+    #: The larger eigenvector condition of the region flows (accurate to ~ this × 2.2e-16).
+    eigenvector_condition: float
+    #: "completed", or why a rigid run stopped early.
+    outcome: str
+    #: Where the run ended: t, its cycle and phase, and the state [η; η̇] (to chain runs).
+    final_time: float
+    final_cycle: int
+    final_phase: float
+    final_state: NDArray[np.float64]
+    #: Where it started ("rest", "state given", "random state, seed …").
+    start: str
+    periods: int
+    record: int
+    #: Wall time of the computation (the interpreter released), seconds.
+    wall_seconds: float
+
+    def __repr__(self) -> str:
+        orbit = (
+            f"({self.period_m}, {self.impacts_n}) orbit"
+            if self.period_m is not None
+            else "no period found"
+        )
+        tip = "" if self.max_tip is None else f", max tip {self.max_tip:.6g}"
+        energy = (
+            "" if self.energy_imbalance is None else f", energy imbalance {self.energy_imbalance:.1e}"
+        )
+        return (
+            f"Simulation({self.periods} + {self.record} periods from {self.start}: {orbit}, "
+            f"{len(self.events)} events{tip}{energy}, {self.outcome})"
+        )
+
+
+@dataclass(frozen=True, repr=False)
+class Orbit:
+    """A periodic orbit by Newton shooting on the stroboscopic map, with its Floquet
+    multipliers (the eigenvalues of the exact monodromy matrix)."""
+
+    #: The state [η; η̇] at the start of a forcing period on the orbit.
+    state: NDArray[np.float64]
+    #: m: forcing periods per orbit period (the least).
+    period_m: int
+    #: n: entries into contact (rigid: impacts) per orbit period.
+    impacts_n: int
+    #: The Floquet multipliers, largest modulus first (complex).
+    multipliers: NDArray[np.complex128]
+    #: All multipliers inside the unit circle.
+    stable: bool
+    #: ‖P^m(x) − x‖∞/‖x‖∞ (at most 1e-12).
+    residual: float
+    #: Newton steps taken.
+    iterations: int
+    #: r_E (eq 39) over one period, when asked for (None: no real root, or not asked).
+    energetic_restitution: Optional[float]
+    #: The largest multiplier modulus.
+    spectral_radius: float
+    #: Where the transient started.
+    start: str
+
+    def __repr__(self) -> str:
+        rE = "" if self.energetic_restitution is None else f", r_E = {self.energetic_restitution:.6g}"
+        return (
+            f"Orbit(({self.period_m}, {self.impacts_n}), "
+            f"{'stable' if self.stable else 'unstable'}, spectral radius "
+            f"{self.spectral_radius:.6f}, residual {self.residual:.1e}, "
+            f"{self.iterations} Newton steps{rE})"
+        )
+
+
+@dataclass(frozen=True)
+class Bifurcation:
+    """A bifurcation between two points of a branch."""
+
+    #: "Fold", "PeriodDoubling", "NeimarkSacker", "BranchPoint" or "Grazing".
+    kind: str
+    #: Where, in the continuation parameter (interpolated).
+    parameter: float
+    #: The parameters of the two points it lies between.
+    between: tuple[float, float]
+    #: The first of the two points.
+    index: int
+    #: Contacts per period before and after.
+    impacts: tuple[int, int]
+    #: Stable before and after.
+    stable: tuple[bool, bool]
+
+
+@dataclass(frozen=True, repr=False)
+class Branch:
+    """A traced branch of period-m orbits, one entry per point (arclength order)."""
+
+    period_m: int
+    #: The continuation parameter p of each point (k/k₁ or ω/(β₁⁻)²).
+    parameter: NDArray[np.float64]
+    #: The orbit's state [η; η̇] at the start of a forcing period, shape (points, 2N).
+    state: NDArray[np.float64]
+    #: n, contacts per orbit period.
+    impacts_n: NDArray[np.int64]
+    #: Floquet multipliers, largest modulus first, shape (points, 2N).
+    multipliers: NDArray[np.complex128]
+    stable: NDArray[np.bool_]
+    residual: NDArray[np.float64]
+    #: The largest multiplier modulus.
+    spectral_radius: NDArray[np.float64]
+    #: The largest tip displacement over the orbit.
+    max_tip: NDArray[np.float64]
+    #: The smallest |d_ext − d₀| over free-flight extrema (NaN where there is none).
+    grazing_distance: NDArray[np.float64]
+    #: Tip velocity at each entry into contact, per point.
+    impact_velocities: list[NDArray[np.float64]]
+    bifurcations: list[Bifurcation]
+    #: Why the branch ends.
+    end: str
+    #: The branch it doubled from, if born at a period doubling.
+    parent: Optional[int]
+
+    def __len__(self) -> int:
+        return len(self.parameter)
+
+    def __repr__(self) -> str:
+        kinds = ", ".join(f"{b.kind} at {b.parameter:.6g}" for b in self.bifurcations)
+        return (
+            f"Branch(period {self.period_m}, {len(self)} points, p = {self.parameter[0]:.6g} → "
+            f"{self.parameter[-1]:.6g}, bifurcations: [{kinds}], {self.end})"
+        )
+
+
+def _branch(b: dict[str, Any]) -> Branch:
+    pts = b["points"]
+    mult = np.array(
+        [[complex(re, im) for re, im in p["multipliers"]] for p in pts], dtype=np.complex128
+    )
+    gd = [p["shape"]["grazing_distance"] for p in pts]
+    return Branch(
+        period_m=b["period_m"],
+        parameter=np.array([p["parameter"] for p in pts], dtype=np.float64),
+        state=np.array([p["state"] for p in pts], dtype=np.float64),
+        impacts_n=np.array([p["impacts_n"] for p in pts], dtype=np.int64),
+        multipliers=mult,
+        stable=np.array([p["stable"] for p in pts], dtype=np.bool_),
+        residual=np.array([p["residual"] for p in pts], dtype=np.float64),
+        spectral_radius=np.abs(mult).max(axis=1) if len(pts) else np.zeros(0),
+        max_tip=np.array([p["shape"]["max_tip"] for p in pts], dtype=np.float64),
+        grazing_distance=np.array([np.nan if g is None else g for g in gd], dtype=np.float64),
+        impact_velocities=[
+            np.array(p["shape"]["impact_velocities"], dtype=np.float64) for p in pts
+        ],
+        bifurcations=[
+            Bifurcation(
+                kind=f["kind"],
+                parameter=f["parameter"],
+                between=tuple(f["between"]),
+                index=f["index"],
+                impacts=tuple(f["impacts"]),
+                stable=tuple(f["stable"]),
+            )
+            for f in b["bifurcations"]
+        ],
+        end=b["end"],
+        parent=b["parent"],
+    )
+
+
+@dataclass(frozen=True, repr=False)
+class Continuation:
+    """The branches of a continuation: branch 0 runs towards ``to``, branch 1 (unless
+    one-way) the other way, then the branches born at period doublings."""
+
+    #: "k/k₁" or "ω/(β₁⁻)²".
+    parameter: str
+    #: The starting orbit's parameter value.
+    start: float
+    modes: int
+    branches: list[Branch]
+    #: The whole result as ``cantilever continue --json`` prints it (without its header).
+    document: dict[str, Any] = field(compare=False)
+
+    def __repr__(self) -> str:
+        lines = [f"Continuation in {self.parameter} from {self.start}, N = {self.modes}:"]
+        lines += [f"  {i}: {b!r}" for i, b in enumerate(self.branches)]
+        return "\n".join(lines)
+
+
+@dataclass(frozen=True, repr=False)
+class EnergeticRestitution:
+    """r_E (eq 39) of the orbit a run settles on, with each contact's r̃_E (eq 38)."""
+
+    #: The orbit's (m, n) label, or "not periodic".
+    label: str
+    period_m: Optional[int]
+    impacts_n: Optional[int]
+    #: Its stroboscopic residual.
+    residual: float
+    #: Eq (39) over one period of the orbit (None if not periodic or no real root).
+    r_E: Optional[float]
+    #: The variant with mode 1's whole energy change during the contacts.
+    r_E_energy_change: Optional[float]
+    #: The contacts of that period: entry, exit, v1 (η̇₁ at entry), tip_velocity, work.
+    contacts: list[dict[str, Any]]
+    #: The state on the orbit at the start of that period, and its cycle.
+    state: NDArray[np.float64]
+    cycle: int
+    document: dict[str, Any] = field(compare=False)
+
+    def __repr__(self) -> str:
+        return (
+            f"EnergeticRestitution({self.label}: r_E = {_opt(self.r_E, '.6g')}, "
+            f"{len(self.contacts)} contacts per period, residual {self.residual:.1e})"
+        )
+
+
+@dataclass(frozen=True)
+class Study:
+    """A refinement study of one observable over N (Richardson limit, GCI uncertainty)."""
+
+    sizes: NDArray[np.int64]
+    values: NDArray[np.float64]
+    limit: float
+    uncertainty: float
+    order: Optional[float]
+    order_change: Optional[float]
+    scale: float
+
+
+@dataclass(frozen=True, repr=False)
+class ModesNeeded:
+    """How many Galerkin modes resolve a stop of stiffness k to a relative accuracy."""
+
+    stop_stiffness: float
+    tolerance: float
+    #: N* found in the scan (every scanned N from it on meets the tolerance), else None.
+    needed: Optional[int]
+    #: Beyond the scan: the power-law estimate of N* from the observed order, else None.
+    estimate: Optional[float]
+    #: The observable that needs the most modes.
+    hardest: str
+    studies: dict[str, Study]
+    #: The smallest N with (β_N⁻)³ ≥ k, for comparison.
+    criterion: int
+    document: dict[str, Any] = field(compare=False)
+
+    def __repr__(self) -> str:
+        n = (
+            str(self.needed)
+            if self.needed is not None
+            else (f"≈ {self.estimate:.3g} (beyond the scan)" if self.estimate else "unresolved")
+        )
+        return (
+            f"ModesNeeded(N* = {n} for {self.tolerance:g} at k = {self.stop_stiffness:g}k₁, "
+            f"set by the {self.hardest}; criterion (β_N)³ = k gives {self.criterion})"
+        )

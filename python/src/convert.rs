@@ -1,0 +1,172 @@
+//! Conversions at the boundary: the library's JSON-shaped results to Python objects, numpy
+//! arrays, and the progress callback.
+
+use crate::Res;
+use impacting_cantilever::error::Error;
+use impacting_cantilever::results::scene::{Progress, Task};
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyArray2};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use pyo3::IntoPyObjectExt;
+use serde_json::Value;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
+
+/// A JSON value as the Python object `json.loads` would give (numbers keep their exact bits:
+/// the value is converted, never printed and parsed).
+pub fn json_to_py<'py>(py: Python<'py>, v: &Value) -> Res<Bound<'py, PyAny>> {
+    Ok(match v {
+        Value::Null => py.None().into_bound(py),
+        Value::Bool(b) => b.into_bound_py_any(py)?,
+        Value::Number(n) => {
+            if let Some(u) = n.as_u64() {
+                u.into_bound_py_any(py)?
+            } else if let Some(i) = n.as_i64() {
+                i.into_bound_py_any(py)?
+            } else {
+                n.as_f64().unwrap_or(f64::NAN).into_bound_py_any(py)?
+            }
+        }
+        Value::String(s) => s.into_bound_py_any(py)?,
+        Value::Array(a) => {
+            let list = PyList::empty(py);
+            for x in a {
+                list.append(json_to_py(py, x)?)?;
+            }
+            list.into_any()
+        }
+        Value::Object(o) => {
+            let dict = PyDict::new(py);
+            for (k, x) in o {
+                dict.set_item(k, json_to_py(py, x)?)?;
+            }
+            dict.into_any()
+        }
+    })
+}
+
+/// Rows of equal length `cols` as a 2-D array (`cols` columns even when there are none),
+/// copied once into the array's buffer.
+pub fn matrix<'py, 'a, T: numpy::Element + Copy + 'a>(
+    py: Python<'py>,
+    rows: impl ExactSizeIterator<Item = &'a [T]>,
+    cols: usize,
+) -> Res<Bound<'py, PyArray2<T>>> {
+    let n = rows.len();
+    let mut flat: Vec<T> = Vec::with_capacity(n * cols);
+    for r in rows {
+        flat.extend_from_slice(r);
+    }
+    let a = Array2::from_shape_vec((n, cols), flat)
+        .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?;
+    Ok(a.into_pyarray(py))
+}
+
+/// The optional progress callback `progress(what, done, total)` of a long call, used from
+/// the worker threads while the interpreter is released. Reports are throttled to about ten
+/// a second (and the last one of each task); a callback that raises, or a pending
+/// KeyboardInterrupt, stops further reports, and the exception is raised when the call
+/// returns (work that can stop early stops at its next check of [`Reporter::stopped`]).
+pub struct Reporter {
+    callback: Option<Py<PyAny>>,
+    /// Whether to attach to the interpreter at all (false: a silent run for timing).
+    attach: bool,
+    error: Mutex<Option<PyErr>>,
+    stopped: AtomicBool,
+    last: Mutex<Option<Instant>>,
+}
+
+/// The shortest interval between two reports of a task.
+const THROTTLE: Duration = Duration::from_millis(100);
+
+impl Reporter {
+    /// A reporter for `callback` (None: silent, but still sees KeyboardInterrupt).
+    pub fn new(callback: Option<Py<PyAny>>) -> Self {
+        Self {
+            callback,
+            attach: true,
+            error: Mutex::new(None),
+            stopped: AtomicBool::new(false),
+            last: Mutex::new(None),
+        }
+    }
+
+    /// A reporter that never touches the interpreter (for timing the pure-Rust call).
+    pub fn silent() -> Self {
+        Self {
+            attach: false,
+            ..Self::new(None)
+        }
+    }
+
+    /// Whether the callback raised or the user interrupted.
+    pub fn stopped(&self) -> bool {
+        self.stopped.load(Ordering::Relaxed)
+    }
+
+    /// Reports `done` of `total` units of `what` (throttled unless `done == total`).
+    pub fn report(&self, what: &str, done: u64, total: u64) {
+        if !self.attach || self.stopped() {
+            return;
+        }
+        {
+            let mut last = self.last.lock().unwrap_or_else(|p| p.into_inner());
+            let now = Instant::now();
+            let due = last.is_none_or(|t| now.duration_since(t) >= THROTTLE);
+            if !(due || done == total) {
+                return;
+            }
+            *last = Some(now);
+        }
+        Python::attach(|py| {
+            let result = match &self.callback {
+                Some(cb) => cb.call1(py, (what, done, total)).map(|_| ()),
+                None => Ok(()),
+            };
+            if let Err(e) = result.and_then(|()| py.check_signals()) {
+                self.stopped.store(true, Ordering::Relaxed);
+                let mut slot = self.error.lock().unwrap_or_else(|p| p.into_inner());
+                slot.get_or_insert(e);
+            }
+        });
+    }
+
+    /// The work's result, unless the callback raised or the user interrupted: then that
+    /// exception (the library's error, if any, came from the stop itself).
+    pub fn finish<T>(self, result: Result<T, Error>) -> Res<T> {
+        let error = self.error.into_inner().unwrap_or_else(|p| p.into_inner());
+        match error {
+            Some(e) => Err(e),
+            None => result.map_err(crate::value_error),
+        }
+    }
+}
+
+/// One task of a [`Reporter`], counted in units.
+struct Counted<'a> {
+    reporter: &'a Reporter,
+    what: String,
+    total: u64,
+    done: AtomicU64,
+}
+
+impl Task for Counted<'_> {
+    fn advance(&self, units: u64) {
+        let done = self.done.fetch_add(units, Ordering::Relaxed) + units;
+        self.reporter.report(&self.what, done, self.total);
+    }
+}
+
+impl Progress for Reporter {
+    fn task(&self, what: &str, total: u64) -> Box<dyn Task + '_> {
+        self.report(what, 0, total);
+        Box::new(Counted {
+            reporter: self,
+            what: what.to_string(),
+            total,
+            done: AtomicU64::new(0),
+        })
+    }
+}

@@ -1,0 +1,351 @@
+//! The paper's results: the scenes of the registry (run one, its key numbers with their
+//! uncertainties, its citation as `cantilever cite` prints it), the citations of the
+//! software and the paper, and the multi-tap atlas in shards (computed anywhere, merged
+//! into exactly the atlas one process computes).
+
+use crate::convert::{json_to_py, Reporter};
+use crate::{bad, value_error, Res};
+use impacting_cantilever::analysis::atlas::{self, AtlasParams, Partial, Shard};
+use impacting_cantilever::base::provenance::Provenance;
+use impacting_cantilever::base::report::{unit_meaning, KeyNumbers, KeyValue};
+use impacting_cantilever::error::{Error, ParameterError};
+use impacting_cantilever::results::citation;
+use impacting_cantilever::results::scene::{self, Entry, Resolution, Scene, SceneOutput};
+use impacting_cantilever::results::scenes::{self, atlas::Atlas};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::path::PathBuf;
+
+fn resolution(text: &str) -> Res<Resolution> {
+    match text {
+        "book" => Ok(Resolution::Book),
+        "test" => Ok(Resolution::Test),
+        other => Err(bad("resolution", other, "book or test")),
+    }
+}
+
+/// Every scene of the registry, in the book's order, with its place in the paper.
+#[pyfunction]
+pub fn scene_list(py: Python<'_>) -> Res<Vec<Bound<'_, PyDict>>> {
+    scenes::all()
+        .iter()
+        .map(|s| {
+            let d = PyDict::new(py);
+            d.set_item("name", s.name())?;
+            d.set_item("paper", s.paper())?;
+            d.set_item("summary", s.summary())?;
+            d.set_item("claim", s.claim())?;
+            d.set_item("method", s.method())?;
+            d.set_item("chapter", s.chapter())?;
+            d.set_item("headline", s.headline().to_vec())?;
+            d.set_item("reduced_for_tests", s.reduced_for_tests())?;
+            Ok(d)
+        })
+        .collect()
+}
+
+/// A computed scene: its key numbers, verdict, data, plot and tables.
+#[pyclass(frozen, module = "impacting_cantilever._core")]
+pub struct SceneRun {
+    spec: &'static dyn Entry,
+    out: SceneOutput,
+}
+
+#[pymethods]
+impl SceneRun {
+    /// The scene's name.
+    #[getter]
+    fn name(&self) -> &'static str {
+        self.spec.name()
+    }
+
+    /// The key numbers as a citable document (the shape of `key_numbers.json` and of
+    /// `cantilever scene NAME --json`): scene, paper, claim, method, parameters,
+    /// provenance, verdict and every number with its uncertainty, basis, unit and digits.
+    fn document<'py>(&self, py: Python<'py>) -> Res<Bound<'py, PyAny>> {
+        json_to_py(py, &scene::key_numbers_document(self.spec, &self.out))
+    }
+
+    /// The computed data (the `data` member of `data.json`).
+    fn data<'py>(&self, py: Python<'py>) -> Res<Bound<'py, PyAny>> {
+        json_to_py(py, &self.out.data)
+    }
+
+    /// The computed data as compact JSON text (the library's serialisation).
+    fn data_json(&self) -> Res<String> {
+        serde_json::to_string(&self.out.data).map_err(|e| bad("data", e, "serialisable"))
+    }
+
+    /// The SVG plot.
+    #[getter]
+    fn svg(&self) -> String {
+        self.out.rendered.svg.clone()
+    }
+
+    /// The main markdown table, then the further tables as (name, markdown).
+    fn tables(&self) -> (String, Vec<(String, String)>) {
+        let extra = self.out.rendered.extra_tables.iter();
+        let extra = extra.map(|(n, t)| (n.to_string(), t.clone())).collect();
+        (self.out.rendered.table.clone(), extra)
+    }
+
+    /// Writes plot.svg, table.md, data.json, key_numbers.json and verdict.json into `dir`
+    /// (as `cantilever scene NAME --out DIR` does).
+    fn write(&self, py: Python<'_>, dir: PathBuf) -> Res<()> {
+        py.detach(|| scene::write(self.spec, &self.out, &dir))
+            .map_err(value_error)
+    }
+
+    /// The citation of one key number (or of all of them), as `cantilever cite` prints it.
+    #[pyo3(signature = (key=None))]
+    fn cite(&self, key: Option<&str>) -> Res<String> {
+        let keys = match key {
+            None => self.out.key_numbers.clone(),
+            Some(k) => match self.out.key_numbers.get(k) {
+                Some(v) => KeyNumbers(vec![(k.to_string(), v.clone())]),
+                None => {
+                    return Err(value_error(unknown_key(
+                        self.spec.name(),
+                        k,
+                        &self.out.key_numbers,
+                    )))
+                }
+            },
+        };
+        Ok(cite_text(self.spec, &self.out, &keys))
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "SceneRun({}: {}, {} key numbers, computed by {})",
+            self.spec.name(),
+            self.out.verdict.outcome,
+            self.out.key_numbers.0.len(),
+            self.out.provenance.line()
+        )
+    }
+}
+
+/// Runs scene `name` at a resolution ("book": the numbers the book publishes; "test": the
+/// tests' reduced resolution), optionally writing its files into `out`.
+#[pyfunction]
+#[pyo3(signature = (name, resolution="book", out=None, progress=None))]
+pub fn scene_run(
+    py: Python<'_>,
+    name: &str,
+    resolution: &str,
+    out: Option<PathBuf>,
+    progress: Option<Py<PyAny>>,
+) -> Res<SceneRun> {
+    let spec = scenes::find(name).map_err(value_error)?;
+    let r = self::resolution(resolution)?;
+    if let Some(dir) = &out {
+        // refused before the work, as `cantilever scene --out` refuses it
+        if dir.exists() && !dir.is_dir() {
+            let why = "a directory (it is a file or a device)";
+            return Err(bad("out", dir.display(), why));
+        }
+    }
+    let reporter = Reporter::new(progress);
+    let result = py.detach(|| {
+        let output = spec.run(r, &reporter)?;
+        if let Some(dir) = &out {
+            scene::write(spec, &output, dir)?;
+        }
+        Ok(output)
+    });
+    let out = reporter.finish(result)?;
+    Ok(SceneRun { spec, out })
+}
+
+/// One line: the key, and the scene's keys sharing most words with it (at most five), as
+/// `cantilever cite` says it.
+fn unknown_key(scene: &str, key: &str, all: &KeyNumbers) -> ParameterError {
+    let words = |s: &str| -> Vec<String> {
+        s.split(|c: char| !c.is_alphanumeric())
+            .filter(|w| !w.is_empty())
+            .map(str::to_lowercase)
+            .collect()
+    };
+    let asked = words(key);
+    let mut near: Vec<(usize, &String)> = all
+        .0
+        .iter()
+        .map(|(k, _)| {
+            let have = words(k);
+            let shared = asked.iter().filter(|w| have.contains(w)).count();
+            let same_case = key.split(' ').next() == k.split(' ').next();
+            (2 * shared + usize::from(same_case), k)
+        })
+        .filter(|(shared, _)| *shared > 0)
+        .collect();
+    near.sort_by_key(|(score, _)| std::cmp::Reverse(*score));
+    let near: Vec<String> = near
+        .iter()
+        .take(5)
+        .map(|(_, k)| format!("\"{k}\""))
+        .collect();
+    let hint = if near.is_empty() {
+        format!("`cantilever cite {scene}` lists all {}", all.0.len())
+    } else {
+        format!("e.g. {}", near.join(", "))
+    };
+    ParameterError::new("KEY", key, &format!("a key number of {scene} ({hint})"))
+}
+
+/// The citation as text, line for line as `cantilever cite` prints it.
+fn cite_text(spec: &dyn Entry, out: &SceneOutput, keys: &KeyNumbers) -> String {
+    let p = &out.provenance;
+    let mut s = String::new();
+    let one = keys.0.len() == 1;
+    for (k, v) in &keys.0 {
+        s += &format!("{k} = {v}\n");
+        match v {
+            KeyValue::Float(x) if !one && x.uncertainty.value > 0.0 => {
+                s += &format!("  ({})\n", x.uncertainty.basis);
+            }
+            _ => {}
+        }
+        if let (true, KeyValue::Float(x)) = (one, v) {
+            s += &format!("  value        {} significant figures\n", x.digits);
+            if x.uncertainty.value > 0.0 {
+                s += &format!("  uncertainty  {}\n", x.uncertainty.basis);
+            }
+            match unit_meaning(&x.unit) {
+                Some(m) => s += &format!("  unit         {}: {m}\n", x.unit),
+                None if !x.unit.is_empty() => s += &format!("  unit         {}\n", x.unit),
+                None => {}
+            }
+        }
+    }
+    let params = serde_json::to_string(&out.params).unwrap_or_default();
+    s += &format!(
+        "\nscene        {} ({}): {}\n",
+        spec.name(),
+        spec.paper(),
+        spec.summary()
+    );
+    s += &format!("parameters   {params}\n");
+    s += &format!("method       {}\n", spec.method());
+    s += &format!(
+        "verdict      {}: {}\n",
+        out.verdict.outcome, out.verdict.evidence
+    );
+    s += &format!("computed by  {}\n", p.line());
+    s += &format!(
+        "reproduce    cargo run --release -- cite {} (at commit {})\n",
+        spec.name(),
+        p.commit
+    );
+    s += &format!(
+        "\nCite the software:\n  {}\n\n{}\n\nand the paper:\n  {}\n\n{}\n",
+        citation::software_plain(p),
+        citation::software_bibtex(p),
+        citation::PAPER_PLAIN,
+        citation::PAPER_BIBTEX
+    );
+    s
+}
+
+/// The software (this build) and the paper, as plain text and BibTeX.
+#[pyfunction]
+pub fn citations(py: Python<'_>) -> Res<Bound<'_, PyDict>> {
+    let p = Provenance::now("");
+    let d = PyDict::new(py);
+    d.set_item("software_plain", citation::software_plain(&p))?;
+    d.set_item("software_bibtex", citation::software_bibtex(&p))?;
+    d.set_item("paper_plain", citation::PAPER_PLAIN)?;
+    d.set_item("paper_bibtex", citation::PAPER_BIBTEX)?;
+    d.set_item("version", p.version)?;
+    d.set_item("commit", p.commit)?;
+    d.set_item("dirty", p.dirty)?;
+    d.set_item("toolchain", p.toolchain)?;
+    Ok(d)
+}
+
+fn params_of(text: &str) -> Res<AtlasParams> {
+    let p: AtlasParams = serde_json::from_str(text)
+        .map_err(|e| bad("atlas parameters", e, "the fields of atlas.params()"))?;
+    p.validate().map_err(value_error)?;
+    Ok(p)
+}
+
+/// The atlas parameters at a resolution, as JSON text ("book": 128 × 128, "test": 9 × 9).
+#[pyfunction]
+pub fn atlas_params(resolution: &str) -> Res<String> {
+    let p = Atlas::params(self::resolution(resolution)?);
+    serde_json::to_string(&p).map_err(|e| bad("atlas parameters", e, "serialisable"))
+}
+
+/// Shard `index` of `count` of the atlas of `params` (JSON), as JSON text: the file
+/// `cantilever atlas --shard I/N` writes.
+#[pyfunction]
+#[pyo3(signature = (params, index, count, progress=None))]
+pub fn atlas_shard(
+    py: Python<'_>,
+    params: &str,
+    index: i64,
+    count: i64,
+    progress: Option<Py<PyAny>>,
+) -> Res<String> {
+    let p = params_of(params)?;
+    let shard = Shard::parse(&format!("{index}/{count}")).map_err(|mut e| {
+        e.name = "shard index/count".into();
+        value_error(e)
+    })?;
+    let reporter = Reporter::new(progress);
+    let cells = (shard.rows(p.k_points).count() * p.omega_points) as u64;
+    let done = std::sync::atomic::AtomicU64::new(0);
+    let result = py.detach(|| {
+        let tick = || {
+            let d = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+            reporter.report("atlas cells", d, cells);
+        };
+        let part = atlas::compute_shard(&p, shard, &tick)?;
+        serde_json::to_string(&part).map_err(|e| Error::Unsupported(format!("atlas shard: {e}")))
+    });
+    reporter.finish(result)
+}
+
+/// Merges shards (JSON texts) into the atlas scene's output, as `cantilever atlas-merge`
+/// does; writes its files into `out` if given.
+#[pyfunction]
+#[pyo3(signature = (shards, out=None))]
+pub fn atlas_merge(py: Python<'_>, shards: Vec<String>, out: Option<PathBuf>) -> Res<SceneRun> {
+    let mut parts = Vec::with_capacity(shards.len());
+    for (i, text) in shards.iter().enumerate() {
+        let part: Partial = serde_json::from_str(text).map_err(|e| {
+            bad(
+                "atlas shard",
+                format!("shard {i} of the list"),
+                &format!("an output of compute_shard or `cantilever atlas` ({e})"),
+            )
+        })?;
+        parts.push(part);
+    }
+    let spec = scenes::find(Atlas::NAME).map_err(value_error)?;
+    let result = py.detach(|| {
+        let data = atlas::merge(parts)?;
+        let resolution = if data.params == AtlasParams::book() {
+            "book"
+        } else if data.params == AtlasParams::test() {
+            "test"
+        } else {
+            "custom"
+        };
+        let provenance = Provenance::of_scene("atlas", resolution);
+        let output = scene::output_of::<Atlas>(&data.params, &data, provenance)?;
+        if let Some(dir) = &out {
+            scene::write(spec, &output, dir)?;
+        }
+        Ok::<_, Error>(output)
+    });
+    let out = result.map_err(value_error)?;
+    Ok(SceneRun { spec, out })
+}
+
+/// This build (version and commit): shards of different builds are not merged.
+#[pyfunction]
+pub fn atlas_build() -> String {
+    atlas::build()
+}
