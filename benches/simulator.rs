@@ -35,6 +35,14 @@ fn simulate(c: &mut Criterion) {
     g.bench_function("fig4_N10", |b| {
         b.iter(|| sim.run(black_box(&x0), 200, &mut ()).unwrap())
     });
+    // with the exact energy budget (what `simulate` pays unless --no-energy)
+    g.bench_function("fig4_N10_energy_budget", |b| {
+        b.iter(|| {
+            let mut e = impacting_cantilever::engine::sim::Energy::default();
+            sim.run(black_box(&x0), 200, &mut e).unwrap();
+            e.budget
+        })
+    });
     g.finish();
     let mut g = c.benchmark_group("setup");
     g.bench_function("flows_N20", |b| b.iter(|| Simulator::new(fig6b()).unwrap()));

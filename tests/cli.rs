@@ -658,3 +658,67 @@ fn every_json_output_carries_its_schema_version_and_one_name_per_quantity() {
     assert_eq!(docs[2]["stop_stiffness_over_k1"], 100.0);
     assert_eq!(docs[1]["omega_over_beta1_squared"], 2.0);
 }
+
+#[test]
+fn continue_follows_a_branch_in_the_gap_and_refuses_a_gap_it_cannot_take_the_log_of() {
+    let base = [
+        "continue",
+        "--modes",
+        "1",
+        "--stop-stiffness",
+        "100",
+        "--zeta1",
+        "0.01",
+        "--omega",
+        "2",
+        "--periods",
+        "1000",
+        "--parameter",
+        "gap",
+        "--to",
+        "0.3",
+    ];
+    let (code, out, err) =
+        cantilever(&[&base[..], &["--gap", "0.1", "--one-way", "--json"]].concat());
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["parameter"], "d₀");
+    let points = v["branches"][0]["points"].as_array().unwrap();
+    let last = points[points.len() - 1]["parameter"].as_f64().unwrap();
+    assert!(points.len() > 10 && last > 0.3, "{last}");
+    // d₀ = 0 (the default) cannot start a branch traced in ln d₀: refused upfront
+    let (code, _, err) = cantilever(&base);
+    assert_eq!(code, 2);
+    assert!(err.contains("--gap") && err.lines().count() == 1, "{err}");
+}
+
+#[test]
+fn simulate_without_the_energy_budget_gives_the_same_run_and_no_imbalance() {
+    let run = [
+        "simulate",
+        "--modes",
+        "10",
+        "--zeta1",
+        "0.01",
+        "--omega",
+        "2",
+        "--periods",
+        "50",
+        "--record",
+        "4",
+        "--json",
+    ];
+    let (code, with, err) = cantilever(&run);
+    assert_eq!(code, 0, "{err}");
+    let (code, without, err) = cantilever(&[&run[..], &["--no-energy"]].concat());
+    assert_eq!(code, 0, "{err}");
+    let (a, b): (serde_json::Value, serde_json::Value) = (
+        serde_json::from_str(&with).unwrap(),
+        serde_json::from_str(&without).unwrap(),
+    );
+    assert!(a["energy_imbalance"].is_number());
+    assert!(b["energy_imbalance"].is_null() && b["energy_imbalance_bound"].is_null());
+    for field in ["events", "final_state", "max_tip", "period_m"] {
+        assert_eq!(a[field], b[field], "{field}");
+    }
+}

@@ -137,7 +137,8 @@ class Scene:
         self._run.write(os.fspath(directory))
 
     def cite(self, key: Optional[str] = None) -> str:
-        """The citation of one key number (all when None), as ``cantilever cite`` prints it:
+        """The citation of one key number of this run (all when None), as ``cantilever cite
+        --recompute`` prints it:
         value ± uncertainty with its basis and unit, the parameters, the method, the build
         that computed it, and the software and the paper as plain text and BibTeX."""
         return self._run.cite(key)  # type: ignore[no-any-return]

@@ -54,6 +54,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(results::scene_list, m)?)?;
     m.add_function(wrap_pyfunction!(results::scene_run, m)?)?;
     m.add_function(wrap_pyfunction!(results::citations, m)?)?;
+    m.add_function(wrap_pyfunction!(results::cite, m)?)?;
     m.add_function(wrap_pyfunction!(results::atlas_params, m)?)?;
     m.add_function(wrap_pyfunction!(results::atlas_shard, m)?)?;
     m.add_function(wrap_pyfunction!(results::atlas_merge, m)?)?;

@@ -7,11 +7,12 @@ use crate::convert::{json_to_py, Reporter};
 use crate::{bad, value_error, Res};
 use impacting_cantilever::analysis::atlas::{self, AtlasParams, Partial, Shard};
 use impacting_cantilever::base::provenance::Provenance;
-use impacting_cantilever::base::report::{unit_meaning, KeyNumbers, KeyValue};
-use impacting_cantilever::error::{Error, ParameterError};
+use impacting_cantilever::error::Error;
 use impacting_cantilever::results::citation;
+use impacting_cantilever::results::cite::{Citation, CiteError};
 use impacting_cantilever::results::scene::{self, Entry, Resolution, Scene, SceneOutput};
 use impacting_cantilever::results::scenes::{self, atlas::Atlas};
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
@@ -96,23 +97,12 @@ impl SceneRun {
             .map_err(value_error)
     }
 
-    /// The citation of one key number (or of all of them), as `cantilever cite` prints it.
+    /// The citation of one key number (or of all of them) of this run, as `cantilever cite
+    /// --recompute` prints it.
     #[pyo3(signature = (key=None))]
     fn cite(&self, key: Option<&str>) -> Res<String> {
-        let keys = match key {
-            None => self.out.key_numbers.clone(),
-            Some(k) => match self.out.key_numbers.get(k) {
-                Some(v) => KeyNumbers(vec![(k.to_string(), v.clone())]),
-                None => {
-                    return Err(value_error(unknown_key(
-                        self.spec.name(),
-                        k,
-                        &self.out.key_numbers,
-                    )))
-                }
-            },
-        };
-        Ok(cite_text(self.spec, &self.out, &keys))
+        let c = Citation::of_output(self.spec, &self.out, key).map_err(value_error)?;
+        Ok(c.to_text())
     }
 
     fn __repr__(&self) -> String {
@@ -158,93 +148,17 @@ pub fn scene_run(
     Ok(SceneRun { spec, out })
 }
 
-/// One line: the key, and the scene's keys sharing most words with it (at most five), as
-/// `cantilever cite` says it.
-fn unknown_key(scene: &str, key: &str, all: &KeyNumbers) -> ParameterError {
-    let words = |s: &str| -> Vec<String> {
-        s.split(|c: char| !c.is_alphanumeric())
-            .filter(|w| !w.is_empty())
-            .map(str::to_lowercase)
-            .collect()
-    };
-    let asked = words(key);
-    let mut near: Vec<(usize, &String)> = all
-        .0
-        .iter()
-        .map(|(k, _)| {
-            let have = words(k);
-            let shared = asked.iter().filter(|w| have.contains(w)).count();
-            let same_case = key.split(' ').next() == k.split(' ').next();
-            (2 * shared + usize::from(same_case), k)
-        })
-        .filter(|(shared, _)| *shared > 0)
-        .collect();
-    near.sort_by_key(|(score, _)| std::cmp::Reverse(*score));
-    let near: Vec<String> = near
-        .iter()
-        .take(5)
-        .map(|(_, k)| format!("\"{k}\""))
-        .collect();
-    let hint = if near.is_empty() {
-        format!("`cantilever cite {scene}` lists all {}", all.0.len())
-    } else {
-        format!("e.g. {}", near.join(", "))
-    };
-    ParameterError::new("KEY", key, &format!("a key number of {scene} ({hint})"))
-}
-
-/// The citation as text, line for line as `cantilever cite` prints it.
-fn cite_text(spec: &dyn Entry, out: &SceneOutput, keys: &KeyNumbers) -> String {
-    let p = &out.provenance;
-    let mut s = String::new();
-    let one = keys.0.len() == 1;
-    for (k, v) in &keys.0 {
-        s += &format!("{k} = {v}\n");
-        match v {
-            KeyValue::Float(x) if !one && x.uncertainty.value > 0.0 => {
-                s += &format!("  ({})\n", x.uncertainty.basis);
-            }
-            _ => {}
-        }
-        if let (true, KeyValue::Float(x)) = (one, v) {
-            s += &format!("  value        {} significant figures\n", x.digits);
-            if x.uncertainty.value > 0.0 {
-                s += &format!("  uncertainty  {}\n", x.uncertainty.basis);
-            }
-            match unit_meaning(&x.unit) {
-                Some(m) => s += &format!("  unit         {}: {m}\n", x.unit),
-                None if !x.unit.is_empty() => s += &format!("  unit         {}\n", x.unit),
-                None => {}
-            }
-        }
-    }
-    let params = serde_json::to_string(&out.params).unwrap_or_default();
-    s += &format!(
-        "\nscene        {} ({}): {}\n",
-        spec.name(),
-        spec.paper(),
-        spec.summary()
-    );
-    s += &format!("parameters   {params}\n");
-    s += &format!("method       {}\n", spec.method());
-    s += &format!(
-        "verdict      {}: {}\n",
-        out.verdict.outcome, out.verdict.evidence
-    );
-    s += &format!("computed by  {}\n", p.line());
-    s += &format!(
-        "reproduce    cargo run --release -- cite {} (at commit {})\n",
-        spec.name(),
-        p.commit
-    );
-    s += &format!(
-        "\nCite the software:\n  {}\n\n{}\n\nand the paper:\n  {}\n\n{}\n",
-        citation::software_plain(p),
-        citation::software_bibtex(p),
-        citation::PAPER_PLAIN,
-        citation::PAPER_BIBTEX
-    );
-    s
+/// The citation of a key number of the book's published numbers (or of all of a scene's),
+/// as `cantilever cite SCENE [KEY]` prints it: instant, no computation.
+#[pyfunction]
+#[pyo3(signature = (scene, key=None))]
+pub fn cite(scene: &str, key: Option<&str>) -> Res<String> {
+    let spec = scenes::find(scene).map_err(value_error)?;
+    let c = Citation::published(spec, key).map_err(|e| match e {
+        CiteError::Key(p) => value_error(p),
+        CiteError::Unpublished(s) => PyValueError::new_err(s),
+    })?;
+    Ok(c.to_text())
 }
 
 /// The software (this build) and the paper, as plain text and BibTeX.

@@ -30,13 +30,18 @@ def test_scene_document_and_citation(cli: Cli, tmp_path: Path) -> None:
     k = scene.key_numbers["beta_free_1"]
     assert isinstance(k, ic.scenes.KeyNumber) and k.uncertainty > 0 and k.digits >= 10
     # the citation, line for line, but for the date in the line that says who computed it
-    p = cli.run("cite", "spectrum", "beta_free_1")
+    p = cli.run("cite", "spectrum", "beta_free_1", "--recompute")
     assert p.returncode == 0, p.stderr
 
     def undated(text: str) -> list[str]:
         return [line for line in text.splitlines() if not line.startswith("computed by")]
 
     assert undated(scene.cite("beta_free_1")) == undated(p.stdout)
+    # a published number: the command line's default, the same text
+    p = cli.run("cite", "fig6", "b r_E")
+    assert p.returncode == 0, p.stderr
+    assert ic.citation.number("fig6", "b r_E") == p.stdout
+    assert ic.citation.number("fig6", "b r_E").startswith("b r_E = 0.7173 ± 0.0001 (")
     assert "@article{melcher2013impacting" in ic.citation.paper_bibtex()
     assert ic.citation.build()["commit"] == doc["provenance"]["commit"]
 
@@ -48,6 +53,9 @@ def test_an_unknown_scene_or_key_is_the_command_lines_message(cli: Cli) -> None:
     scene = ic.scenes.run("spectrum")
     with pytest.raises(ValueError) as e:
         scene.cite("beta free 9")
+    assert str(e.value) == cli.error("cite", "spectrum", "beta free 9")
+    with pytest.raises(ValueError) as e:
+        ic.citation.number("spectrum", "beta free 9")
     assert str(e.value) == cli.error("cite", "spectrum", "beta free 9")
 
 

@@ -1,6 +1,8 @@
 //! The paper's results: one scene per result, their plots, tables, citations and comparisons, and the book.
 
 pub mod citation;
+#[cfg(feature = "plots")]
+pub mod cite;
 pub mod diff;
 pub mod files;
 #[cfg(feature = "plots")]
@@ -8,6 +10,8 @@ pub mod render;
 pub mod scene;
 #[cfg(feature = "plots")]
 pub mod scenes;
+#[cfg(feature = "plots")]
+pub mod schematic;
 
 #[cfg(feature = "book")]
 pub mod book;

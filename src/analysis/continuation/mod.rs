@@ -53,6 +53,8 @@ pub enum Parameter {
     StopStiffness,
     /// p = ω/(β₁⁻)².
     Frequency,
+    /// p = d₀, the gap, in the model's units (> 0: continued in ln d₀).
+    Gap,
 }
 
 impl Parameter {
@@ -61,6 +63,7 @@ impl Parameter {
         match self {
             Parameter::StopStiffness => "k/k₁",
             Parameter::Frequency => "ω/(β₁⁻)²",
+            Parameter::Gap => "d₀",
         }
     }
 }
@@ -84,7 +87,7 @@ impl<'a> Family<'a> {
         }
     }
 
-    /// The paper's forced model with k/k₁ or ω/(β₁⁻)² as the parameter.
+    /// The paper's forced model with k/k₁, ω/(β₁⁻)² or d₀ as the parameter.
     pub fn forced(base: Forced, parameter: Parameter) -> Family<'static> {
         Family::new(parameter, move |p| {
             let f = match parameter {
@@ -96,6 +99,7 @@ impl<'a> Family<'a> {
                     omega_over_w1: p,
                     ..base
                 },
+                Parameter::Gap => Forced { gap: p, ..base },
             };
             Ok(f.model()?)
         })

@@ -14,6 +14,8 @@ pub enum ParameterArg {
     StopStiffness,
     /// ω/(β₁⁻)² (--omega).
     Omega,
+    /// d₀ in units of the free tip amplitude at resonance (--gap; > 0).
+    Gap,
 }
 
 /// The command's inputs: the start orbit of `orbit`, the parameter and where to go.
@@ -45,7 +47,7 @@ pub struct ContinueArgs {
 /// The branches and what they started from.
 #[derive(Debug, Clone, serde::Serialize)]
 pub struct Report {
-    /// "k/k₁" or "ω/(β₁⁻)²".
+    /// "k/k₁", "ω/(β₁⁻)²" or "d₀" (in units of the free tip amplitude at resonance).
     pub parameter: &'static str,
     /// The starting orbit's parameter value.
     pub start: f64,
@@ -61,7 +63,22 @@ pub fn run(args: &ContinueArgs) -> Result<Report, Error> {
     let (parameter, p0) = match args.parameter {
         ParameterArg::StopStiffness => (Parameter::StopStiffness, a.stop_stiffness),
         ParameterArg::Omega => (Parameter::Frequency, a.omega),
+        ParameterArg::Gap => (Parameter::Gap, a.gap),
     };
+    // the branch is traced in ln p
+    if p0.is_nan() || p0 <= 0.0 {
+        let flag = match args.parameter {
+            ParameterArg::StopStiffness => "--stop-stiffness",
+            ParameterArg::Omega => "--omega",
+            ParameterArg::Gap => "--gap",
+        };
+        return Err(ParameterError::new(
+            flag,
+            impacting_cantilever::error::number(p0),
+            "a value > 0 to continue from (the branch is traced in the logarithm of the parameter)",
+        )
+        .into());
+    }
     if !(args.to.is_finite() && args.to > 0.0 && args.to != p0) {
         return Err(ParameterError::new(
             "--to",
@@ -82,6 +99,7 @@ pub fn run(args: &ContinueArgs) -> Result<Report, Error> {
     match args.parameter {
         ParameterArg::StopStiffness => at_to.stop_stiffness = args.to,
         ParameterArg::Omega => at_to.omega = args.to,
+        ParameterArg::Gap => at_to.gap = args.to,
     }
     if let Err(e) = simulate::model(&at_to) {
         return Err(ParameterError::new(
@@ -99,6 +117,7 @@ pub fn run(args: &ContinueArgs) -> Result<Report, Error> {
         match parameter {
             Parameter::StopStiffness => m.stop_stiffness = p,
             Parameter::Frequency => m.omega = p,
+            Parameter::Gap => m.gap = p,
         }
         Ok(simulate::model(&m)?)
     });

@@ -422,9 +422,9 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 &progress::Bars::default(),
             )?;
             if json {
-                outln!("{}", json_text("cite", cite::to_json(&c)));
+                outln!("{}", json_text("cite", c.to_json()));
             } else {
-                emit(&cite::to_text(&c));
+                emit(&c.to_text());
             }
             Ok(())
         }

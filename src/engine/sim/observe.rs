@@ -102,6 +102,39 @@ pub trait Observer {
 
 impl Observer for () {}
 
+/// An observer that may be switched off: `None` observes nothing and costs nothing (the
+/// energy budget of `simulate --no-energy`).
+impl<O: Observer> Observer for Option<O> {
+    fn needs_period_boundaries(&self) -> bool {
+        self.as_ref().is_some_and(|o| o.needs_period_boundaries())
+    }
+    fn begin(&mut self, sim: &Simulator, clock: &Clock, x: &DVector<f64>) {
+        if let Some(o) = self {
+            o.begin(sim, clock, x)
+        }
+    }
+    fn segment(&mut self, segment: &SegmentView) {
+        if let Some(o) = self {
+            o.segment(segment)
+        }
+    }
+    fn event(&mut self, event: &EventView) {
+        if let Some(o) = self {
+            o.event(event)
+        }
+    }
+    fn period_boundary(&mut self, clock: &Clock, x: &DVector<f64>) {
+        if let Some(o) = self {
+            o.period_boundary(clock, x)
+        }
+    }
+    fn end(&mut self, sim: &Simulator, clock: &Clock, x: &DVector<f64>, stats: &Stats) {
+        if let Some(o) = self {
+            o.end(sim, clock, x, stats)
+        }
+    }
+}
+
 impl<O: Observer + ?Sized> Observer for &mut O {
     fn needs_period_boundaries(&self) -> bool {
         (**self).needs_period_boundaries()

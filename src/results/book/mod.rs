@@ -187,6 +187,8 @@ pub fn build_only(
         .map(|o| o.provenance.clone())
         .unwrap_or_else(|| Provenance::now("book"));
     scene::write_atomically(&generated.join("citation.md"), &citation(&provenance))?;
+    let schematic = crate::results::schematic::svg().map_err(|e| anyhow::anyhow!("{e}"))?;
+    scene::write_atomically(&generated.join("schematic.svg"), &schematic)?;
     let t = Instant::now();
     let numbers_pre = NumbersPreprocessor {
         seconds: seconds.into_iter().collect(),
@@ -265,7 +267,7 @@ pub fn glance_table(scenes: &[&dyn Entry], outputs: &[SceneNumbers]) -> String {
             .iter()
             .find_map(|(label, key)| {
                 let v = out.key_numbers.get(key)?;
-                Some(format!("{label}: {}", for_html(&v.prose(true))))
+                Some(for_html(&format!("{label}: {}", v.prose(true))))
             })
             .unwrap_or_else(|| "—".into());
         let outcome = out.verdict.outcome;
@@ -318,7 +320,7 @@ pub fn summary_table(scenes: &[&dyn Entry], outputs: &[SceneNumbers]) -> String 
             .filter_map(|(label, key)| {
                 out.key_numbers
                     .get(key)
-                    .map(|v| format!("{label}: {}", for_html(&v.prose(true))))
+                    .map(|v| for_html(&format!("{label}: {}", v.prose(true))))
             })
             .collect();
         let name = spec.name();
@@ -330,7 +332,7 @@ pub fn summary_table(scenes: &[&dyn Entry], outputs: &[SceneNumbers]) -> String 
             for_html(spec.title()),
             spec.chapter(),
             capitalised(&out.verdict.outcome.to_string()),
-            spec.claim(),
+            for_html(spec.claim()),
             numbers.join("; "),
             for_html(&out.verdict.evidence)
         ));
@@ -366,7 +368,8 @@ pub fn for_html(text: &str) -> String {
     let mut i = 0;
     while i < chars.len() {
         let c = chars[i];
-        if c == '`' {
+        // code and TeX (`$…$`, converted later to MathML) keep their underscores
+        if c == '`' || c == '$' {
             in_code = !in_code;
         }
         let symbol = c.is_alphabetic() || c == ']';
@@ -427,6 +430,7 @@ mod html_tests {
         assert_eq!(for_html("[R]_N"), "[R]<sub>N</sub>");
         assert_eq!(for_html("impact_velocity_1"), "impact_velocity_1");
         assert_eq!(for_html("`r_E` r_E"), "`r_E` r<sub>E</sub>");
+        assert_eq!(for_html("$k_2/k_1$ r_E"), "$k_2/k_1$ r<sub>E</sub>");
         assert_eq!(for_html("a_"), "a_");
     }
 }

@@ -114,6 +114,10 @@ pub struct SimulateArgs {
     /// Periods recorded after that (≤ 1e5).
     #[arg(long, default_value_t = 32)]
     pub record: u64,
+    /// Skip the exact energy budget (energy_imbalance is then absent): it costs about as
+    /// much as the flow itself, so a long run takes about half the time without it.
+    #[arg(long)]
+    pub no_energy: bool,
     /// The model: compliant (eq 34) or rigid (§3).
     #[arg(long, value_enum, default_value_t = ModelKind::Compliant)]
     pub model: ModelKind,

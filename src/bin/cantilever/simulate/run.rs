@@ -202,10 +202,13 @@ fn compliant(args: &SimulateArgs, setup: Setup, bars: &Bars) -> Result<Report, E
         task: task.as_ref(),
         done: 0,
     };
-    // the transient
-    let mut energy = Energy::default();
+    // the transient (the energy budget costs about as much as the flow: on request only)
+    let budgeted = || (!args.no_energy).then(Energy::default);
+    let mut energy = budgeted();
     let end = sim.run_from(&x, clock, args.periods, &mut (&mut energy, &mut ticker))?;
-    add(&energy.budget);
+    if let Some(e) = &energy {
+        add(&e.budget);
+    }
     let mut segments = end.stats.segments;
     (x, clock) = (end.state, end.clock);
     // the recorded window
@@ -214,7 +217,7 @@ fn compliant(args: &SimulateArgs, setup: Setup, bars: &Bars) -> Result<Report, E
         per_period: args.dense_per_period,
         rows: Vec::new(),
     };
-    let (mut energy, mut strobe) = (Energy::default(), Strobe::default());
+    let (mut energy, mut strobe) = (budgeted(), Strobe::default());
     let end = if args.dense.is_some() {
         sim.run_from(
             &x,
@@ -242,7 +245,9 @@ fn compliant(args: &SimulateArgs, setup: Setup, bars: &Bars) -> Result<Report, E
             ),
         )?
     };
-    add(&energy.budget);
+    if let Some(e) = &energy {
+        add(&e.budget);
+    }
     segments += end.stats.segments;
     let strobe_states = strobe.states();
     (x, clock) = (end.state, end.clock);

@@ -155,8 +155,8 @@ fn row_labels(d: &AtlasData, i: usize) -> String {
 impl Scene for Atlas {
     const NAME: &'static str = "atlas";
     const PAPER: &'static str = "beyond §5.3";
-    const TITLE: &'static str = "A multi-tap atlas over (k, ω)";
-    const GIST: &'static str = "— (multiple taps shown at single points only)";
+    const TITLE: &'static str = "Multi-tap atlas over (k, ω)";
+    const GIST: &'static str = "— (taps at single points only)";
     const GROUP: Group = Group::Beyond;
     const SUMMARY: &'static str =
         "multi-tap atlas: stable orbits (m, n) and their coexistence over k and ω, N matched to k";
@@ -269,9 +269,9 @@ impl Scene for Atlas {
         Verdict {
             outcome: Outcome::Extension,
             evidence: format!(
-                "With N matched to k, from rest the beam taps more than once per forcing period in {:.0}% of the {all} cells; at least {:.0}% have two or more coexisting stable orbits; with 10 more modes the orbit from rest is the same (m, n), its entry velocities within 1 %, in {agree} of {checked} checked cells",
+                "With N matched to k, from rest the beam taps more than once per forcing period in {multi} of the {all} cells ({:.0} %); at least {coexist} ({:.1} %, rounded down: a lower bound) have two or more coexisting stable orbits; with 10 more modes the orbit from rest is the same (m, n), its entry velocities within 1 %, in {agree} of {checked} checked cells",
                 pct(multi),
-                pct(coexist)
+                (pct(coexist) * 10.0).floor() / 10.0
             ),
         }
     }

@@ -204,9 +204,9 @@ pub struct EnergeticMap;
 impl Scene for EnergeticMap {
     const NAME: &'static str = "energetic-map";
     const PAPER: &'static str = "§5.4 and §7 (beyond the paper)";
-    const TITLE: &'static str = "r_E over stop stiffness and frequency";
-    const GIST: &'static str = "r_E “dependent on the dynamics observed” (§7)";
-    const GROUP: Group = Group::Beyond;
+    const TITLE: &'static str = "§7: r_E and the dynamics";
+    const GIST: &'static str = "r_E depends on the dynamics";
+    const GROUP: Group = Group::Paper;
     const SUMMARY: &'static str = "r_E (eq 39) over the forcing frequency and the stop stiffness, d0 = 0, zeta1 = 0.01, N by stiffness matching";
     const CLAIM: &'static str = "Energetic coefficients of restitution are \"dependent on the dynamics observed\" (§7).";
     const CHAPTER: &'static str = "fig6.md";

@@ -332,7 +332,7 @@ impl Scene for Experiment {
     const NAME: &'static str = "experiment";
     const PAPER: &'static str = "§6, Figs 7-9 (validation)";
     const TITLE: &'static str = "The experiment (§6)";
-    const GIST: &'static str = "k/k₁ = O(10³); a (1,1) orbit with five contact intervals";
+    const GIST: &'static str = "k/k₁ = O(10³); five contact intervals";
     const GROUP: Group = Group::Validation;
     const SUMMARY: &'static str = "the experiment in the model's terms: beam theory for f1 and k/k1, the Figure 9 orbit in seconds and hertz";
     const CLAIM: &'static str = "The experiment has $k/k_1 = O(10^3)$; the measured motion is a macroscopic (1,1) orbit with five contact intervals and high-frequency motion between them, which the 20-mode model shares.";

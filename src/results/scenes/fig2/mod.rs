@@ -160,8 +160,8 @@ pub struct Fig2;
 impl Scene for Fig2 {
     const NAME: &'static str = "fig2";
     const PAPER: &'static str = "Fig 2, §2.3";
-    const TITLE: &'static str = "Figure 2: the modal contact stiffness";
-    const GIST: &'static str = "N modes give the spectrum only while k ≲ (β_N)³";
+    const TITLE: &'static str = "Fig 2: contact stiffness";
+    const GIST: &'static str = "exact only while k ≲ (β_N)³";
     const GROUP: Group = Group::Paper;
     const SUMMARY: &'static str =
         "eigenvalues of K+ for N = 1, 3, 10 vs exact (beta_i+)^4; lambda_N/(kN)";

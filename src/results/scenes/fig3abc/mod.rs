@@ -207,8 +207,8 @@ pub struct Fig3abc;
 impl Scene for Fig3abc {
     const NAME: &'static str = "fig3-abc";
     const PAPER: &'static str = "Fig 3(a)-(c), §4.1-4.3";
-    const TITLE: &'static str = "Figure 3(a)–(c): one contact as k → ∞";
-    const GIST: &'static str = "return velocities approach r_e (N = 1) and [R]₂ (N = 2)";
+    const TITLE: &'static str = "Fig 3(a)–(c): k → ∞";
+    const GIST: &'static str = "return velocities → r_e and [R]₂";
     const GROUP: Group = Group::Paper;
     const SUMMARY: &'static str = "one contact of the compliant model, k = eps^-2, vs r_e (eq 19) and [R]_N (eq 29), N = 1, 2, 3, 10";
     const CLAIM: &'static str = "Simulated return velocities approach $r_e$ ($N = 1$) and $[R]_2$ ($N = 2$) as $k \\to \\infty$; mode 1's coefficient of restitution tends to zero.";

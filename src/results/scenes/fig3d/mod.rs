@@ -163,8 +163,8 @@ pub struct Fig3d;
 impl Scene for Fig3d {
     const NAME: &'static str = "fig3-d";
     const PAPER: &'static str = "Fig 3(d), §4.4, eq (30)";
-    const TITLE: &'static str = "Figure 3(d): the impact law as N → ∞";
-    const GIST: &'static str = "the rigid law's post-impact velocity does not converge in N";
+    const TITLE: &'static str = "Fig 3(d): N → ∞";
+    const GIST: &'static str = "the rigid law does not converge in N";
     const GROUP: Group = Group::Paper;
     const SUMMARY: &'static str =
         "post-impact velocity profile for v- = e1, r_e = 1, N = 1..100: [R]_N and [R]_C";

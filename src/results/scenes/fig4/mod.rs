@@ -314,8 +314,8 @@ pub struct Fig4;
 impl Scene for Fig4 {
     const NAME: &'static str = "fig4";
     const PAPER: &'static str = "Fig 4, §5.3";
-    const TITLE: &'static str = "Figure 4: orbits for N = 1, 2, 3, 10";
-    const GIST: &'static str = "(1,1), (2,4), (1,3), (1,1) from rest at k = 100k₁";
+    const TITLE: &'static str = "Fig 4: orbits, N = 1–10";
+    const GIST: &'static str = "(1,1), (2,4), (1,3), (1,1) from rest";
     const GROUP: Group = Group::Paper;
     const SUMMARY: &'static str = "periodic orbits for N = 1, 2, 3, 10 at k = 100 k1 vs the paper's (1,1), (2,4), (1,3), (1,1)";
     const CLAIM: &'static str = "From rest the orbits are (1,1), (2,4), (1,3), (1,1) for $N = 1, 2, 3, 10$ at $k = 100k_1$.";

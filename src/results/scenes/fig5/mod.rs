@@ -390,8 +390,8 @@ pub struct Fig5;
 impl Scene for Fig5 {
     const NAME: &'static str = "fig5";
     const PAPER: &'static str = "Fig 5, §5.3";
-    const TITLE: &'static str = "Figure 5: bifurcations in the stop stiffness";
-    const GIST: &'static str = "truncations agree for k ≲ k₁ and part from about k₂";
+    const TITLE: &'static str = "Fig 5: bifurcations in k";
+    const GIST: &'static str = "N-dependence from about k₂ ≈ 39k₁";
     const GROUP: Group = Group::Paper;
     const SUMMARY: &'static str =
         "bifurcation diagrams in k (impact section), N = 1, 2, 3, 10, random starts";

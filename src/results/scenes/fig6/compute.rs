@@ -38,7 +38,7 @@ fn forced(panel: &str, reading: Reading, modes: usize) -> Result<Forced, Error> 
 }
 
 /// Panel (a)'s model with d₀ = ρ·A_free(ω) (the text's amplitude).
-fn scanned(rho: f64, modes: usize) -> Result<Forced, Error> {
+pub(super) fn scanned(rho: f64, modes: usize) -> Result<Forced, Error> {
     let a = problems::figure6a(1).model()?.free_tip_amplitude().0;
     Ok(Forced {
         gap: rho * a,
@@ -334,9 +334,14 @@ pub fn compute(p: &Fig6Params, progress: &dyn Progress) -> Result<Fig6Data, Erro
             s
         })
         .collect::<Result<Vec<_>, Error>>()?;
+    drop(task);
+    let task = progress.task("fig6 (1,1) branch in d0", 1);
+    let gap_branch = super::branch::compute(&scan, p)?;
+    task.advance(1);
     Ok(Fig6Data {
         params: p.clone(),
         cases,
         scan,
+        gap_branch,
     })
 }

@@ -15,6 +15,7 @@
 //! tolerance, random starts); its uncertainty is the largest change among those that keep
 //! the orbit.
 
+mod branch;
 mod compute;
 pub mod render;
 
@@ -242,6 +243,8 @@ pub struct Fig6Data {
     pub cases: Vec<Case>,
     /// The scan of panel (a) over d₀/A_free.
     pub scan: Vec<ScanPoint>,
+    /// The scan's (1,1) orbit continued in d₀ (None: the scan found none).
+    pub gap_branch: Option<branch::GapBranch>,
 }
 
 /// The scene.
@@ -259,8 +262,8 @@ fn r_text(c: &Option<Coefficient>) -> String {
 impl Scene for Fig6 {
     const NAME: &'static str = "fig6";
     const PAPER: &'static str = "Fig 6, §5.4, eqs (38)-(39)";
-    const TITLE: &'static str = "Figure 6: r_E at two gaps";
-    const GIST: &'static str = "(a) r_E = 0.036 near grazing; (b) r_E = 0.74 with multiple taps";
+    const TITLE: &'static str = "Fig 6: r_E at two gaps";
+    const GIST: &'static str = "r_E = 0.036 (a) and 0.74 (b)";
     const GROUP: Group = Group::Paper;
     const SUMMARY: &'static str = "energetic restitution r_E of the 20-mode model and the one-mode impact oscillator, panels (a) and (b), k = 1000 k1";
     const CLAIM: &'static str = "(a) $d_0 = 0.8$: a (1,1) orbit near grazing with $r_E = 0.036$, matched by the one-mode model; (b) $d_0 = 0$: multiple taps, $r_E = 0.74$, not matched.";
@@ -430,6 +433,7 @@ impl Scene for Fig6 {
             d.scan.iter().filter(|s| s.rest.kind == s.random.kind).count() as i64,
         );
         k.integer("a scan points", d.scan.len() as i64);
+        branch_keys(&mut k, d);
         k
     }
 
@@ -490,4 +494,64 @@ impl Scene for Fig6 {
         r.extra_tables.push(("comparison", render::comparison_table(d)));
         Ok(r)
     }
+}
+
+/// The key numbers of the (1,1) branch in d₀: where it folds and grazes, and how small r_E
+/// and the entry velocity become on it (stable part and whole branch).
+fn branch_keys(k: &mut KeyNumbers, d: &Fig6Data) {
+    let Some(b) = &d.gap_branch else {
+        k.text("a (1,1) branch in d0", "none (no (1,1) orbit from rest in the scan)");
+        return;
+    };
+    let at = |kind: &str| -> String {
+        let xs: Vec<String> = b
+            .bifurcations
+            .iter()
+            .filter(|f| f.kind == kind)
+            .map(|f| format!("{:.3}", f.gap_over_free_amplitude))
+            .collect();
+        if xs.is_empty() {
+            "none".into()
+        } else {
+            xs.join(", ")
+        }
+    };
+    k.text("a (1,1) branch in d0 folds at d0/A_free", at("fold"));
+    k.text("a (1,1) branch in d0 grazings at d0/A_free", at("grazing"));
+    k.text("a (1,1) branch in d0 period doublings at d0/A_free", at("period doubling"));
+    // the (1,1) part of the branch (past a grazing it gains contacts per period)
+    let ones: Vec<&branch::GapPoint> = b.points.iter().filter(|q| q.contacts == 1).collect();
+    let span = |pts: &[&branch::GapPoint]| -> String {
+        let lo = pts.iter().map(|q| q.gap_over_free_amplitude).fold(f64::INFINITY, f64::min);
+        let hi = pts.iter().map(|q| q.gap_over_free_amplitude).fold(f64::NEG_INFINITY, f64::max);
+        if pts.is_empty() {
+            "none".into()
+        } else {
+            format!("{lo:.3} to {hi:.3}")
+        }
+    };
+    let stable: Vec<&branch::GapPoint> = ones.iter().copied().filter(|q| q.stable).collect();
+    k.text("a (1,1) branch in d0 stable (1,1) orbits at d0/A_free", span(&stable));
+    k.text("a (1,1) branch in d0 (1,1) orbits at d0/A_free", span(&ones));
+    let r = ones.iter().filter_map(|q| q.r_e).fold(f64::INFINITY, f64::min);
+    if r.is_finite() {
+        k.text("a (1,1) branch in d0 smallest r_E of a (1,1) orbit", format!("{r:.3}"));
+    }
+    // the most nearly grazing (1,1) orbit: its entry velocity and r_E
+    if let Some(g) = ones
+        .iter()
+        .filter(|q| q.smallest_entry_velocity.is_some())
+        .min_by(|a, b| a.smallest_entry_velocity.partial_cmp(&b.smallest_entry_velocity).unwrap_or(std::cmp::Ordering::Equal))
+    {
+        k.text(
+            "a (1,1) branch in d0 nearest grazing",
+            format!(
+                "entry velocity {:.1e} ωA_free at d0/A_free = {:.4}, r_E = {}",
+                g.smallest_entry_velocity.unwrap_or(f64::NAN),
+                g.gap_over_free_amplitude,
+                g.r_e.map_or("no real value".to_string(), |r| format!("{r:.4}"))
+            ),
+        );
+    }
+    k.text("a (1,1) branch in d0 ends", b.ends.join("; "));
 }

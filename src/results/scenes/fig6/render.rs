@@ -171,6 +171,31 @@ fn scan_panel<DB: DrawingBackend>(
             .label(format!("{n} contact{} per period", if n > 1 { "s" } else { "" }))
             .legend(move |(x, y)| Circle::new((x + 12, y), 4, c.filled()));
     }
+    // the (1,1) branch continued in d₀: solid where stable, dotted where not
+    if let Some(b) = &d.gap_branch {
+        let on = |q: &super::branch::GapPoint| {
+            let v = if velocity { q.smallest_entry_velocity } else { q.r_e };
+            v.filter(|v| *v <= top).map(|v| (q.gap_over_free_amplitude, v))
+        };
+        let (stable, unstable): (Vec<_>, Vec<_>) = b.points.iter().partition(|q| q.stable);
+        let c = BLACK;
+        chart
+            .draw_series(stable.iter().filter_map(|q| on(q)).map(|p| Circle::new(p, 2, c.filled())))
+            .map_err(drawing)?
+            .label("(1,1) branch in d₀, stable")
+            .legend(move |(x, y)| Circle::new((x + 12, y), 2, c.filled()));
+        chart
+            .draw_series(unstable.iter().filter_map(|q| on(q)).map(|p| Circle::new(p, 2, c.stroke_width(1))))
+            .map_err(drawing)?
+            .label("(1,1) branch in d₀, unstable")
+            .legend(move |(x, y)| Circle::new((x + 12, y), 2, c.stroke_width(1)));
+        for f in b.bifurcations.iter().filter(|f| f.kind == "fold") {
+            let x = f.gap_over_free_amplitude;
+            chart
+                .draw_series(std::iter::once(TriangleMarker::new((x, 0.0), 7, RED.filled())))
+                .map_err(drawing)?;
+        }
+    }
     if !velocity {
         chart
             .draw_series(DashedLineSeries::new(
@@ -231,7 +256,12 @@ fn which(c: &Case) -> String {
 
 fn r_with_uncertainty(c: &Case) -> String {
     match (c.coefficient.and_then(|r| r.value()), c.uncertainty) {
-        (Some(r), Some(u)) => format!("{r:.4} ± {}", crate::base::report::format_sig(u.max(1e-12), 1)),
+        (Some(r), Some(u)) => {
+            // the key number's value and uncertainty, its rounding included (one story)
+            use crate::base::report::{format_sig, pretty, round_up_one_figure, Cited, Uncertainty};
+            let c = Cited::new(r, 4, Uncertainty::new(u.max(1e-12), ""), "");
+            format!("{} ± {}", pretty(c.value, c.digits), format_sig(round_up_one_figure(c.uncertainty.value), 1))
+        }
         (Some(r), None) => format!("{r:.4} (orbit not robust)"),
         _ => r_text(&c.coefficient),
     }

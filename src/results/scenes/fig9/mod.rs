@@ -209,8 +209,8 @@ fn count_text(c: &Count) -> String {
 impl Scene for Fig9 {
     const NAME: &'static str = "fig9";
     const PAPER: &'static str = "Fig 9, §6";
-    const TITLE: &'static str = "Figure 9: the experiment's parameters";
-    const GIST: &'static str = "multiple taps with five separate impacts";
+    const TITLE: &'static str = "Fig 9: multiple taps";
+    const GIST: &'static str = "five separate impacts per period";
     const GROUP: Group = Group::Paper;
     const SUMMARY: &'static str = "the 20-mode model at the experiment's parameters: velocity over a period, exact harmonic spectrum, contacts per period and where five occur";
     const CLAIM: &'static str = "At the experiment's parameters the 20-mode model shows \"multiple-tap dynamics with five separate impacts\" and a spectrum with \"contributions from the first four modes\".";

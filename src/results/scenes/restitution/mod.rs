@@ -202,8 +202,8 @@ pub struct RestitutionLaws;
 impl Scene for RestitutionLaws {
     const NAME: &'static str = "restitution";
     const PAPER: &'static str = "§3–4, eqs (11)-(29)";
-    const TITLE: &'static str = "Modal restitution laws (§3–4)";
-    const GIST: &'static str = "the compliant model tends to the stiffness-limit law [R]_N as k → ∞";
+    const TITLE: &'static str = "Restitution laws (§3–4)";
+    const GIST: &'static str = "compliant → stiffness-limit law, k → ∞";
     const GROUP: Group = Group::Paper;
     const SUMMARY: &'static str =
         "modal restitution laws: r_e against the exact 1-DOF ratio, energy, the rigid limit (Nordmark)";

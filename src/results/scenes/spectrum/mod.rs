@@ -210,8 +210,8 @@ pub struct Spectrum;
 impl Scene for Spectrum {
     const NAME: &'static str = "spectrum";
     const PAPER: &'static str = "§2.1, eqs (3)-(4)";
-    const TITLE: &'static str = "The spectrum with the stop held on (§2.1)";
-    const GIST: &'static str = "roots move from the cantilever's to the clamped–pinned values; k₂ ≈ 39.3k₁";
+    const TITLE: &'static str = "Spectrum, stop held on";
+    const GIST: &'static str = "cantilever → clamped–pinned; k₂ ≈ 39.3k₁";
     const GROUP: Group = Group::Paper;
     const SUMMARY: &'static str =
         "continuum roots beta_i (free, clamped-pinned, finite k) vs golden; k2/k1; small-k law";

@@ -280,7 +280,7 @@ impl Scene for WorkPrecision {
     const NAME: &'static str = "work-precision";
     const PAPER: &'static str = "§5.2 (methods)";
     const TITLE: &'static str = "Error against run time";
-    const GIST: &'static str = "— (the paper gives no error estimates)";
+    const GIST: &'static str = "— (no error estimates given)";
     const GROUP: Group = Group::Methods;
     const SUMMARY: &'static str =
         "error against run time: exact simulator vs DP5 reference, Fig 4 model, N = 10";

@@ -1,0 +1,268 @@
+//! Sharding the atlas: rows split over processes ([`Shard`]), each part written as a
+//! self-describing, validated text document ([`Partial`]) and merged ([`merge`]) into
+//! exactly the atlas one process computes.
+
+use super::*;
+
+/// A part of the rows: shard `index` of `count` takes rows i with i mod count = index
+/// (interleaved, so each shard gets a share of the costly stiff rows).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Shard {
+    /// I, this shard's index, from 0.
+    pub index: usize,
+    /// N, the number of shards.
+    pub count: usize,
+}
+
+impl Shard {
+    /// All rows.
+    pub const WHOLE: Shard = Shard { index: 0, count: 1 };
+
+    /// Parses "I/N" with 0 ≤ I < N.
+    pub fn parse(text: &str) -> Result<Self, ParameterError> {
+        let bad = || ParameterError::new("--shard", text, "I/N with integers 0 ≤ I < N, N ≥ 1");
+        let (i, n) = text.split_once('/').ok_or_else(bad)?;
+        let index: usize = i.trim().parse().map_err(|_| bad())?;
+        let count: usize = n.trim().parse().map_err(|_| bad())?;
+        if count == 0 || index >= count {
+            return Err(bad());
+        }
+        Ok(Self { index, count })
+    }
+
+    /// The rows of this shard among `rows`.
+    pub fn rows(self, rows: usize) -> impl Iterator<Item = usize> {
+        (self.index..rows).step_by(self.count)
+    }
+}
+
+/// A shard's result: the parameters, which shard, and its rows.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Partial {
+    /// The format's name, so that a wrong file is refused with a clear message.
+    pub format: String,
+    /// The parameters (every shard of one atlas has the same).
+    pub params: AtlasParams,
+    /// The build that computed it (version and commit): shards of different builds are
+    /// not merged.
+    pub build: String,
+    /// Which shard.
+    pub shard: Shard,
+    /// Its rows, in increasing index.
+    pub rows: Vec<Row>,
+}
+
+impl Partial {
+    /// Checks a shard read from a file against what [`compute_shard`] can produce: valid
+    /// parameters, its rows among the shard's, each row's k as the grid gives it, and every
+    /// cell consistent (periods 1 … max_period, spectral radii of stable orbits in [0, 1),
+    /// start indices among the cell's starts, `from_rest` naming one of its attractors,
+    /// checks only on checked cells). The error names the row, the column and the field.
+    pub fn validate(&self) -> Result<(), ParameterError> {
+        let p = &self.params;
+        p.validate()?;
+        let shard = format!("{}/{}", self.shard.index, self.shard.count);
+        if self.shard.count == 0 || self.shard.index >= self.shard.count {
+            return Err(ParameterError::new(
+                "atlas shard",
+                &shard,
+                "I/N with 0 ≤ I < N",
+            ));
+        }
+        let bad = |at: String, what: &str| {
+            Err(ParameterError::new(
+                "atlas shard",
+                format!("{at} of shard {shard}"),
+                &format!("{what}, as `cantilever atlas` writes it"),
+            ))
+        };
+        for r in &self.rows {
+            let i = r.index;
+            if i >= p.k_points || i % self.shard.count != self.shard.index {
+                return bad(format!("row {i}"), "a row of this shard");
+            }
+            if r.k_over_k1 != p.k_over_k1(i) {
+                return bad(format!("k/k₁ = {} of row {i}", r.k_over_k1), "the grid's k");
+            }
+            if r.modes == 0 || r.modes > crate::model::galerkin::MAX_MODES {
+                return bad(format!("modes of row {i}"), "1 ≤ N ≤ the model's largest N");
+            }
+            if let ModesRule::Fixed(n) = p.modes {
+                if r.modes != n {
+                    return bad(format!("modes of row {i}"), "the fixed N of the parameters");
+                }
+            }
+            if r.cells.len() != p.omega_points {
+                return bad(
+                    format!("row {i} ({} cells)", r.cells.len()),
+                    "omega_points cells",
+                );
+            }
+            for (j, c) in r.cells.iter().enumerate() {
+                let at = |field: &str| format!("{field} of row {i}, column {j}");
+                for a in &c.attractors {
+                    if !(1..=p.max_period).contains(&a.period_m) {
+                        return bad(at("period_m"), "1 ≤ m ≤ max_period");
+                    }
+                    if a.impacts_n as u64 > a.period_m * crate::engine::sim::MAX_CONTACTS_PER_PERIOD
+                    {
+                        return bad(
+                            at("impacts_n"),
+                            "at most the simulator's contacts per period",
+                        );
+                    }
+                    if !(a.spectral_radius >= 0.0 && a.spectral_radius < 1.0) {
+                        return bad(at("spectral_radius"), "a stable orbit's: 0 ≤ ρ < 1");
+                    }
+                    if a.starts.iter().any(|&s| s >= p.starts) {
+                        return bad(at("starts"), "start indices below `starts`");
+                    }
+                }
+                if c.from_rest.is_some_and(|k| k >= c.attractors.len()) {
+                    return bad(at("from_rest"), "the index of one of the cell's attractors");
+                }
+                if c.unsettled_starts > p.starts {
+                    return bad(at("unsettled_starts"), "at most `starts`");
+                }
+                let checked = i.is_multiple_of(p.check_stride) && j.is_multiple_of(p.check_stride);
+                match &c.check {
+                    Some(_) if !checked => return bad(at("check"), "none on an unchecked cell"),
+                    None if checked => return bad(at("check"), "a check on a checked cell"),
+                    Some(ch) => {
+                        if ch
+                            .from_rest
+                            .is_some_and(|(m, _)| !(1..=p.max_period).contains(&m))
+                        {
+                            return bad(at("check.from_rest"), "1 ≤ m ≤ max_period");
+                        }
+                        if ch.modes
+                            != (r.modes + p.check_extra_modes)
+                                .min(crate::model::galerkin::MAX_MODES)
+                        {
+                            return bad(at("check.modes"), "the row's N plus check_extra_modes");
+                        }
+                        if ch
+                            .impact_velocity_change
+                            .is_some_and(|d| !(0.0..=1.0).contains(&d))
+                        {
+                            return bad(
+                                at("check.impact_velocity_change"),
+                                "a relative change in [0, 1]",
+                            );
+                        }
+                        if ch.missed > p.check_starts {
+                            return bad(at("check.missed"), "at most `check_starts`");
+                        }
+                    }
+                    None => {}
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The `format` of a [`Partial`].
+pub const PARTIAL_FORMAT: &str = "impacting-cantilever atlas shard v2";
+
+/// Computes the rows of one shard in parallel (rayon); `progress` is called once per cell.
+pub fn compute_shard(
+    p: &AtlasParams,
+    shard: Shard,
+    progress: &(dyn Fn() + Sync),
+) -> Result<Partial, Error> {
+    p.validate()?;
+    let modes = p.modes_by_row()?;
+    let indices: Vec<usize> = shard.rows(p.k_points).collect();
+    let rows = indices
+        .par_iter()
+        .map(|&i| row(p, i, modes[i], progress))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(Partial {
+        format: PARTIAL_FORMAT.to_string(),
+        params: p.clone(),
+        build: build(),
+        shard,
+        rows,
+    })
+}
+
+/// This build: version, commit, and whether the tree had uncommitted changes.
+pub fn build() -> String {
+    let p = crate::base::provenance::Provenance::now("");
+    let dirty = if p.dirty == Some(true) {
+        "+changes"
+    } else {
+        ""
+    };
+    format!("{} {}{dirty}", p.version, p.commit)
+}
+
+/// The whole atlas in one process.
+pub fn compute(p: &AtlasParams, progress: &(dyn Fn() + Sync)) -> Result<AtlasData, Error> {
+    merge(vec![compute_shard(p, Shard::WHOLE, progress)?])
+}
+
+/// Combines shards into the atlas. Refuses shards of different parameters, a row given
+/// twice, or a missing row, naming it.
+pub fn merge(parts: Vec<Partial>) -> Result<AtlasData, Error> {
+    let refuse = |what: String| {
+        Err(Error::Parameter(ParameterError::new(
+            "atlas shards",
+            what,
+            "the shards 0/N … (N−1)/N of one atlas (same parameters), each once",
+        )))
+    };
+    let Some(first) = parts.first() else {
+        return refuse("none".into());
+    };
+    let (params, first_build) = (first.params.clone(), first.build.clone());
+    // a hand-edited file is checked against the atlas's own invariants before anything
+    // is allocated from it (k_points = 1e12 would ask for terabytes)
+    params.validate()?;
+    for part in &parts {
+        part.validate()?;
+    }
+    let mut rows: Vec<Option<Row>> = vec![None; params.k_points];
+    for part in parts {
+        if part.format != PARTIAL_FORMAT {
+            return refuse(format!("a file of format {:?}", part.format));
+        }
+        if part.build != first_build {
+            return refuse(format!(
+                "shard {}/{} computed by another build ({} vs {first_build})",
+                part.shard.index, part.shard.count, part.build
+            ));
+        }
+        if part.params != params {
+            return refuse(format!(
+                "shard {}/{} computed with other parameters",
+                part.shard.index, part.shard.count
+            ));
+        }
+        for r in part.rows {
+            let i = r.index;
+            if i >= rows.len() || r.cells.len() != params.omega_points {
+                return refuse(format!("row {i} malformed"));
+            }
+            if rows[i].is_some() {
+                return refuse(format!("row {i} given twice"));
+            }
+            rows[i] = Some(r);
+        }
+    }
+    let mut complete = Vec::with_capacity(rows.len());
+    for (i, r) in rows.into_iter().enumerate() {
+        match r {
+            Some(r) => complete.push(r),
+            None => return refuse(format!("row {i} missing")),
+        }
+    }
+    Ok(AtlasData {
+        omega_over_w1: (0..params.omega_points)
+            .map(|j| params.omega_over_w1(j))
+            .collect(),
+        params,
+        rows: complete,
+    })
+}
