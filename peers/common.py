@@ -107,7 +107,7 @@ def machine():
         "cpu": model,
         "cores": os.cpu_count(),
         "os": f"{platform.system()} {platform.release()} {platform.machine()}",
-        "load_average_at_start": list(os.getloadavg()),
+        "load_average_when_written": list(os.getloadavg()),
     }
 
 
@@ -199,12 +199,15 @@ def write_result(name, doc):
     return path
 
 
-def header(problem, matrices_doc, extra_versions=None):
+def header(problem, matrices_doc, extra_versions=None, load_at_start=None):
+    m = machine()
+    if load_at_start is not None:
+        m["load_average_at_start"] = load_at_start
     return {
         "format": FORMAT,
         "date": datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ"),
         "command": "python3 peers/run.py " + " ".join(sys.argv[1:]),
-        "machine": machine(),
+        "machine": m,
         "versions": versions(extra_versions),
         "problem": problem,
         "matrices": matrices_doc,

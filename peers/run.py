@@ -217,6 +217,7 @@ def run_problem(name, args):
     p = PROBLEMS[name]
     common.log(f"== {name}: {p['title']}")
     spec = {k: v for k, v in p.items()}
+    load = list(os.getloadavg())
     with tempfile.TemporaryDirectory() as tmp:
         mx = common.matrices(p)
         model = Model(mx)
@@ -341,7 +342,8 @@ def run_problem(name, args):
             "event_time_error_vs_reference": event_error(ours["event_times"], ours["event_kinds"],
                                                          ref_times, ref_kinds),
         })
-        doc = common.header(spec, mx, siconos_version(args.siconos_python) if p["model"] == "rigid" else None)
+        doc = common.header(spec, mx, siconos_version(args.siconos_python) if p["model"] == "rigid" else None,
+                            load_at_start=load)
         doc["protocol"] = protocol(args)
         doc["reference"] = {
             "method": p["reference"],
@@ -388,6 +390,7 @@ ORBIT_RTOLS = {"DOP853": [1e-6, 1e-8, 1e-10], "Radau": [1e-6, 1e-8, 1e-10], "LSO
 def run_orbits(args):
     common.log("== orbits")
     problems, rows = [], []
+    load = list(os.getloadavg())
     with tempfile.TemporaryDirectory() as tmp:
         runs = []
         for n, start_periods in ORBITS:
@@ -470,7 +473,7 @@ def run_orbits(args):
             rows.append(row)
         doc = common.header({"title": "Figure 4 orbit and its Floquet multipliers by Newton shooting",
                              **FIG4, "cases": [{k: v for k, v in c.items() if k != "ours"} for c in problems]},
-                            None)
+                            None, load_at_start=load)
         doc["protocol"] = protocol(args)
         doc["ours"] = [dict(c["ours"], modes=c["modes"], start_periods=c["start_periods"]) for c in problems]
         doc["rows"] = rows
