@@ -3,6 +3,7 @@
 pub mod citation;
 pub mod diff;
 pub mod files;
+pub mod peers;
 #[cfg(feature = "plots")]
 pub mod render;
 pub mod scene;
