@@ -17,7 +17,7 @@ pub mod render;
 use crate::base::report::{KeyNumbers, Uncertainty};
 use crate::error::Error;
 use crate::results::peers::{self, Orbits, Simulation};
-use crate::results::scene::{Outcome, Progress, Rendered, Resolution, Scene, Verdict};
+use crate::results::scene::{Group, Outcome, Progress, Rendered, Resolution, Scene, Verdict};
 use serde::Serialize;
 
 /// What the scene recomputes.
@@ -424,6 +424,9 @@ pub struct SideBySide;
 impl Scene for SideBySide {
     const NAME: &'static str = "side-by-side";
     const PAPER: &'static str = "§5.1–5.3 (methods)";
+    const TITLE: &'static str = "Side by side with other tools";
+    const GIST: &'static str = "— (the paper compares no tools)";
+    const GROUP: Group = Group::Methods;
     const SUMMARY: &'static str =
         "error against run time: this project beside scipy, Siconos and Newton shooting with finite differences";
     const CLAIM: &'static str = "— (the paper compares no tools)";
