@@ -174,6 +174,7 @@ per_scene! {
     scene_stiffness_matching => "stiffness-matching",
     scene_atlas => "atlas",
     scene_work_precision => "work-precision",
+    scene_side_by_side => "side-by-side",
 }
 
 #[test]

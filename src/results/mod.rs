@@ -5,6 +5,7 @@ pub mod citation;
 pub mod cite;
 pub mod diff;
 pub mod files;
+pub mod peers;
 #[cfg(feature = "plots")]
 pub mod render;
 pub mod scene;

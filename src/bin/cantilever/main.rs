@@ -138,8 +138,9 @@ enum Command {
     /// Output fields (--json): period_m, impacts_n (entries into contact, or impacts, per
     /// period), state ([η; η̇] at the start of a forcing period on the orbit), section,
     /// multipliers (the monodromy's eigenvalues as [re, im], largest modulus first), stable
-    /// (all |μ| < 1), residual (‖P^m(x) − x‖∞/‖x‖∞, ≤ 1e-12), iterations, and the
-    /// parameters (model, law, restitution for the rigid model).
+    /// (all |μ| < 1), residual (‖P^m(x) − x‖∞/‖x‖∞, ≤ 1e-12), iterations, the
+    /// parameters (model, law, restitution for the rigid model) and wall_seconds (the
+    /// transient and the shooting, after the model is set up).
     Orbit {
         #[command(flatten)]
         args: orbit::OrbitArgs,

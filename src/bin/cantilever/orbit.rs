@@ -49,6 +49,9 @@ pub struct Report {
     pub zeta1: f64,
     /// d₀.
     pub gap: f64,
+    /// Wall time of the transient and the shooting, from the model's matrices (the flows' set-up
+    /// included) to the orbit and its multipliers (s).
+    pub wall_seconds: f64,
 }
 
 /// Finds the orbit, of the compliant model or of the rigid-impact model with its law.
@@ -60,11 +63,13 @@ pub fn run(args: &OrbitArgs) -> Result<Report, Error> {
         }
     }
     let setup = simulate::setup(a)?;
+    let started = std::time::Instant::now();
     let sim = Simulator::new(setup.model)?;
     let orbit = match (a.model, setup.law) {
         (ModelKind::Rigid, Some(law)) => find(&RigidImpact::new(sim, law)?, &setup.x0, args)?,
         _ => find(&sim, &setup.x0, args)?,
     };
+    let wall_seconds = started.elapsed().as_secs_f64();
     Ok(Report {
         orbit,
         start: format!("{} after {} transient periods", setup.start, a.periods),
@@ -76,6 +81,7 @@ pub fn run(args: &OrbitArgs) -> Result<Report, Error> {
         omega_over_w1: a.omega,
         zeta1: a.zeta1,
         gap: a.gap,
+        wall_seconds,
     })
 }
 

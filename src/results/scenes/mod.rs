@@ -31,6 +31,7 @@ registry! {
     stiffness_matching::StiffnessMatching,
     atlas::Atlas,
     work_precision::WorkPrecision,
+    side_by_side::SideBySide,
 }
 
 /// Looks a scene up by name.
