@@ -221,6 +221,12 @@ fn the_published_numbers_agree_with_themselves_and_read_back_exactly() {
             .filter(|l| !l.starts_with("    ("))
             .collect();
         assert_eq!(set.numbers.0.len(), body.len(), "{}", set.scene);
+        // every key once (a key read back wrong would merge two)
+        let mut keys: Vec<&String> = set.numbers.0.iter().map(|(k, _)| k).collect();
+        keys.sort();
+        let n = keys.len();
+        keys.dedup();
+        assert_eq!(keys.len(), n, "{}: a key appears twice", set.scene);
         for ((key, value), line) in set.numbers.0.iter().zip(&body) {
             assert!(line.starts_with(&format!("{key} = ")), "{line}");
             if let impacting_cantilever::base::report::KeyValue::Float(c) = value {

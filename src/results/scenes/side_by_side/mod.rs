@@ -515,7 +515,7 @@ impl Scene for SideBySide {
             worst_ours,
         );
         for o in &d.orbits {
-            let key = format!("orbit N = {} from {} periods", o.modes, o.start_periods);
+            let key = format!("orbit N={} from {} periods", o.modes, o.start_periods);
             k.integer(format!("{key}: Newton steps"), o.ours_iterations as i64);
             k.cited(
                 format!("{key}: spectral radius"),
