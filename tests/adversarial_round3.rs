@@ -455,12 +455,15 @@ fn item_11_an_output_set_is_written_whole_even_by_concurrent_writers() {
             Command::new(env!("CARGO_BIN_EXE_cantilever"))
                 .args(["atlas-merge", a, b, "--out", "out"])
                 .current_dir(&d)
-                .stderr(std::process::Stdio::null())
+                .stderr(std::process::Stdio::piped())
                 .spawn()
                 .unwrap()
         };
-        let (mut x, mut y) = (spawn("a0.json", "a1.json"), spawn("b0.json", "b1.json"));
-        assert!(x.wait().unwrap().success() && y.wait().unwrap().success());
+        let (x, y) = (spawn("a0.json", "a1.json"), spawn("b0.json", "b1.json"));
+        for run in [x.wait_with_output().unwrap(), y.wait_with_output().unwrap()] {
+            let err = String::from_utf8_lossy(&run.stderr);
+            assert!(run.status.success(), "{err}");
+        }
         // one atlas's files, never a mix
         assert_eq!(seed_of("data.json"), seed_of("key_numbers.json"));
     }

@@ -533,10 +533,28 @@ fn writable_dir(dir: &std::path::Path) -> Result<(), ParameterError> {
             )));
         }
     }
-    let probe = probe_dir.join(format!(".cantilever-probe.{}", std::process::id()));
-    std::fs::write(&probe, b"").map_err(|e| fail(format!("a writable directory ({e})")))?;
-    let _ = std::fs::remove_file(&probe);
-    Ok(())
+    // Probed beside `dir`, not inside it: the set is written into a sibling and swapped in,
+    // and a probe inside could meet another writer's swap (the folder renamed away under
+    // it, or the probe counted as a file of the folder's own). Inside only when the parent
+    // does not take files (then no set is swapped there: the files go in place).
+    let beside = |d: &std::path::Path| match d.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => std::path::PathBuf::from("."),
+    };
+    if dir.exists() {
+        probe_dir = beside(dir);
+    }
+    let probe_in = |d: &std::path::Path| {
+        let probe = d.join(format!(".cantilever-probe.{}", std::process::id()));
+        let r = std::fs::write(&probe, b"");
+        let _ = std::fs::remove_file(&probe);
+        r
+    };
+    match probe_in(&probe_dir) {
+        Ok(()) => Ok(()),
+        Err(_) if dir.exists() && probe_in(dir).is_ok() => Ok(()),
+        Err(e) => Err(fail(format!("a writable directory ({e})"))),
+    }
 }
 
 fn modes_command(modes: usize, k_over_k1: f64, json: bool) -> Result<(), Failure> {
