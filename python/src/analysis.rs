@@ -167,6 +167,8 @@ pub fn continue_branch<'py>(
             match which {
                 Parameter::StopStiffness => c.stop_stiffness = p,
                 Parameter::Frequency => c.omega = p,
+                // not offered here (`parameter` is stop_stiffness or omega); the model's gap
+                Parameter::Gap => c.gap = p,
             }
             Ok(c.model()?)
         });
