@@ -1,0 +1,52 @@
+//! The `--out` folder of a scene or a merged atlas: checked before any work, so that a run
+//! that cannot write its files is refused at once (exit 2) instead of after its computation.
+
+use impacting_cantilever::error::ParameterError;
+
+/// `dir` can receive a scene's files: an existing directory that accepts a file, or a new
+/// one whose nearest existing ancestor does (it is created only when the files are
+/// written, so a failed run leaves nothing behind).
+pub fn writable_dir(dir: &std::path::Path) -> Result<(), ParameterError> {
+    let fail = |why: String| ParameterError::new("--out", dir.display(), &why);
+    let mut probe_dir = dir.to_path_buf();
+    if dir.exists() {
+        if !dir.is_dir() {
+            return Err(fail("a directory (it is a file or a device)".into()));
+        }
+    } else {
+        while !probe_dir.exists() {
+            probe_dir = match probe_dir.parent() {
+                Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+                _ => std::path::PathBuf::from("."),
+            };
+        }
+        if !probe_dir.is_dir() {
+            return Err(fail(format!(
+                "a directory path ({} is not a directory)",
+                probe_dir.display()
+            )));
+        }
+    }
+    // Probed beside `dir`, not inside it: the set is written into a sibling and swapped in,
+    // and a probe inside could meet another writer's swap (the folder renamed away under
+    // it, or the probe counted as a file of the folder's own). Inside only when the parent
+    // does not take files (then no set is swapped there: the files go in place).
+    let beside = |d: &std::path::Path| match d.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => std::path::PathBuf::from("."),
+    };
+    if dir.exists() {
+        probe_dir = beside(dir);
+    }
+    let probe_in = |d: &std::path::Path| {
+        let probe = d.join(format!(".cantilever-probe.{}", std::process::id()));
+        let r = std::fs::write(&probe, b"");
+        let _ = std::fs::remove_file(&probe);
+        r
+    };
+    match probe_in(&probe_dir) {
+        Ok(()) => Ok(()),
+        Err(_) if dir.exists() && probe_in(dir).is_ok() => Ok(()),
+        Err(e) => Err(fail(format!("a writable directory ({e})"))),
+    }
+}
