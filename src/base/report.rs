@@ -280,6 +280,11 @@ impl KeyNumbers {
         ));
     }
 
+    /// Adds a value already cited (rounded, its rounding folded into its uncertainty).
+    pub fn push(&mut self, name: impl Into<String>, value: Cited) {
+        self.0.push((name.into(), KeyValue::Float(value)));
+    }
+
     /// Adds the unit of a forced scene's lengths and velocities: the free tip amplitude
     /// A_free at the scene's ω (keys `"{prefix}A_free"` and `"{prefix}omega A_free"`), in the
     /// model's length unit, the free tip amplitude at resonance.

@@ -5,8 +5,9 @@ pub mod citation;
 pub mod cite;
 pub mod diff;
 pub mod files;
-pub mod peers;
 #[cfg(feature = "plots")]
+pub mod marker;
+pub mod peers;
 pub mod render;
 pub mod scene;
 #[cfg(feature = "plots")]

@@ -367,7 +367,7 @@ pub fn key_numbers_document(spec: &dyn Entry, out: &SceneOutput) -> serde_json::
 pub fn write(spec: &dyn Entry, out: &SceneOutput, dir: &Path) -> Result<(), Error> {
     let json = |v: &serde_json::Value| serde_json::to_string_pretty(v).unwrap_or_default();
     let mut files = vec![
-        ("plot.svg".to_string(), out.rendered.svg.clone()),
+        ("plot.svg".to_string(), svg_text(&out.rendered.svg)),
         ("table.md".to_string(), out.rendered.table.clone()),
         (
             "data.json".to_string(),
@@ -391,4 +391,70 @@ pub fn write(spec: &dyn Entry, out: &SceneOutput, dir: &Path) -> Result<(), Erro
         files.push((format!("{name}.md"), table.clone()));
     }
     crate::results::files::write_set(dir, &files)
+}
+
+/// The plots' text as the book's prose writes it: `X_Y` (a run of letters and digits after
+/// the underscore) as a subscript, so labels read r<sub>E</sub> and (β<sub>N</sub>)³ rather
+/// than `r_E` and `(β_N)³`; and a tick label that rounds to a negative zero ("-0.0", from
+/// a tick at −1e-17) without its sign. Only the text between `<text …>` and `</text>`
+/// changes.
+pub fn svg_text(svg: &str) -> String {
+    let mut out = String::with_capacity(svg.len());
+    let mut rest = svg;
+    while let Some(open) = rest.find("<text") {
+        let Some(gt) = rest[open..].find('>') else {
+            break;
+        };
+        let body = open + gt + 1;
+        let Some(len) = rest[body..].find("</text>") else {
+            break;
+        };
+        out.push_str(&rest[..body]);
+        out.push_str(&text_node(&rest[body..body + len]));
+        rest = &rest[body + len..];
+    }
+    out.push_str(rest);
+    out
+}
+
+fn text_node(t: &str) -> String {
+    let trimmed = t.trim();
+    if trimmed.starts_with('-')
+        && trimmed.len() > 1
+        && trimmed[1..].chars().all(|c| c == '0' || c == '.')
+    {
+        return t.replacen('-', "", 1);
+    }
+    let mut out = String::with_capacity(t.len());
+    let mut chars = t.chars().peekable();
+    while let Some(c) = chars.next() {
+        let starts_sub = c == '_' && chars.peek().is_some_and(|n| n.is_alphanumeric());
+        if !starts_sub {
+            out.push(c);
+            continue;
+        }
+        out.push_str("<tspan baseline-shift=\"sub\" font-size=\"75%\">");
+        while let Some(&n) = chars.peek().filter(|n| n.is_alphanumeric()) {
+            out.push(n);
+            chars.next();
+        }
+        out.push_str("</tspan>");
+    }
+    out
+}
+
+#[cfg(test)]
+mod svg_tests {
+    use super::svg_text;
+
+    #[test]
+    fn subscripts_and_negative_zero_in_text_only() {
+        let svg = "<g id=\"a_b\"><text x=\"1\">\n(β_N)³ = k, w_t(1)\n</text><text>\n-0.0\n</text><text>-0.5</text></g>";
+        let out = svg_text(svg);
+        assert!(out.contains("id=\"a_b\""), "attributes untouched: {out}");
+        assert!(out.contains("(β<tspan baseline-shift=\"sub\" font-size=\"75%\">N</tspan>)³"));
+        assert!(out.contains("w<tspan baseline-shift=\"sub\" font-size=\"75%\">t</tspan>(1)"));
+        assert!(out.contains(">\n0.0\n<"), "{out}");
+        assert!(out.contains(">-0.5<"));
+    }
 }

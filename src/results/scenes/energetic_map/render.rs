@@ -48,6 +48,9 @@ pub fn plot(d: &MapData) -> Result<String, RenderError> {
         for pt in &d.points {
             let (w, l) = (pt.omega_over_w1, pt.k_over_k1.log10());
             let corners = [(w - dw, l - dk), (w + dw, l + dk)];
+            // the fill overlaps the next cell a little, so that anti-aliasing leaves no
+            // hairline seams between cells (the outline keeps the cell's own size)
+            let fill = [(w - dw, l - dk), ((w + 1.3 * dw).min(w1), (l + 1.3 * dk).min(l1))];
             let color = match special(&pt.cell) {
                 Some((c, _)) => c,
                 None => match pt.cell {
@@ -56,7 +59,7 @@ pub fn plot(d: &MapData) -> Result<String, RenderError> {
                 },
             };
             chart
-                .draw_series(std::iter::once(Rectangle::new(corners, color.filled())))
+                .draw_series(std::iter::once(Rectangle::new(fill, color.filled())))
                 .map_err(drawing)?;
             if pt.cell == Cell::NoContact {
                 chart

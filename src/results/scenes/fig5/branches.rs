@@ -43,6 +43,9 @@ pub struct OverlayBranch {
     pub bifurcations: Vec<Bifurcation>,
     /// Why it ends.
     pub end: String,
+    /// At each Neimark–Sacker point: k/k₁ and the critical pair's |arg μ|/2π (the mean of
+    /// the two points it lies between), the rotation number of the torus it gives birth to.
+    pub neimark_sacker_rotation: Vec<(f64, f64)>,
 }
 
 /// All branches of one truncation.
@@ -89,6 +92,15 @@ fn overlay(b: &Branch, vamp: f64) -> OverlayBranch {
             .collect(),
         bifurcations: b.bifurcations.clone(),
         end: b.end.clone(),
+        neimark_sacker_rotation: b
+            .bifurcations
+            .iter()
+            .filter(|f| f.kind == continuation::BifurcationKind::NeimarkSacker)
+            .filter_map(|f| {
+                let at = |i: usize| super::rotation::pair_rotation(&b.points.get(i)?.multipliers);
+                Some((f.parameter, 0.5 * (at(f.index)? + at(f.index + 1)?)))
+            })
+            .collect(),
     }
 }
 
@@ -196,19 +208,26 @@ pub(super) fn key_numbers(k: &mut KeyNumbers, d: &Fig5Data) {
         );
         k.integer(format!("N={} continued branches", set.modes), set.branches.len() as i64);
     }
-    // N = 3: the Figure 4 branch (the first one traced, upwards from k = 100k₁)
-    let Some(three) = d.branches.iter().find(|s| s.modes == 3) else {
-        return;
-    };
-    let Some(up) = three.branches.first() else {
-        return;
-    };
-    for (impacts, name) in [((1, 2), "N=3 grazing to 2 contacts at"), ((2, 3), "N=3 grazing to 3 contacts at")] {
-        match up
-            .bifurcations
+    isolas(k, d);
+    neimark_sacker_pairs(k, d);
+    // The Figure 4 branch (the first one traced, upwards from k = 100k₁): where its
+    // contact splits (N = 3: twice, on the way to the paper's (1,3); N = 10: once).
+    let graze = |modes: usize, impacts: (usize, usize)| {
+        let up = d.branches.iter().find(|s| s.modes == modes)?.branches.first()?;
+        up.bifurcations
             .iter()
             .find(|f| f.kind == BifurcationKind::Grazing && f.impacts == impacts)
-        {
+            .cloned()
+    };
+    for (modes, impacts, name) in [
+        (3, (1, 2), "N=3 grazing to 2 contacts at"),
+        (3, (2, 3), "N=3 grazing to 3 contacts at"),
+        (10, (1, 2), "N=10 grazing to 2 contacts at"),
+    ] {
+        if !d.branches.iter().any(|s| s.modes == modes) {
+            continue;
+        }
+        match graze(modes, impacts) {
             Some(f) => {
                 let (lo, hi) = (f.between.0.min(f.between.1), f.between.0.max(f.between.1));
                 k.cited(
@@ -225,6 +244,9 @@ pub(super) fn key_numbers(k: &mut KeyNumbers, d: &Fig5Data) {
             None => k.text(name, "not found"),
         }
     }
+    let Some(up) = d.branches.iter().find(|s| s.modes == 3).and_then(|s| s.branches.first()) else {
+        return;
+    };
     k.text(
         "N=3 bifurcations on the Fig 4 branch up to 1000k1",
         up.bifurcations
@@ -233,4 +255,89 @@ pub(super) fn key_numbers(k: &mut KeyNumbers, d: &Fig5Data) {
             .collect::<Vec<_>>()
             .join(", "),
     );
+}
+
+/// N = 1's windows of period m ≥ 3: closed branches (isolas) bounded by folds. Their
+/// periods, and the largest k any of them reaches: a fold, beyond the largest traced k by
+/// no more than that point's larger k-difference to its two neighbours (near a fold k is
+/// quadratic in arclength, k_f − c(s − s_f)²; the nearest point lies within h/2 of s_f, so
+/// k_f − k_max ≤ ch²/4, while the neighbour a step further from s_f differs from it by
+/// at least ch²).
+fn isolas(k: &mut KeyNumbers, d: &Fig5Data) {
+    let Some(one) = d.branches.iter().find(|s| s.modes == 1) else {
+        return;
+    };
+    let windows: Vec<&OverlayBranch> = one
+        .branches
+        .iter()
+        .filter(|b| b.period_m >= 3 && b.end.starts_with("closed loop"))
+        .collect();
+    let (Some(lo), Some(hi)) = (
+        windows.iter().map(|b| b.period_m).min(),
+        windows.iter().map(|b| b.period_m).max(),
+    ) else {
+        return k.text("N=1 isolas, periods", "none");
+    };
+    k.text("N=1 isolas, periods", format!("{lo} to {hi}"));
+    // the largest traced k, and the larger step to its neighbours on the loop
+    let mut top = (0.0f64, 0.0f64);
+    for b in &windows {
+        let ks: Vec<f64> = b.points.iter().map(|p| p.k_over_k1).collect();
+        for (i, &x) in ks.iter().enumerate() {
+            if x > top.0 {
+                let prev = ks[(i + ks.len() - 1) % ks.len()];
+                let next = ks[(i + 1) % ks.len()];
+                top = (x, (x - prev).abs().max((x - next).abs()));
+            }
+        }
+    }
+    k.cited(
+        "N=1 isolas reach up to",
+        top.0,
+        3,
+        Uncertainty::new(
+            top.1,
+            "the largest k traced on the loops; the fold lies within one continuation step",
+        ),
+        "k₁",
+    );
+}
+
+/// The Neimark–Sacker pair that bounds the torus interval on the (1,1) branch of every
+/// N ≥ 2: the lowest and the highest of the pair over the truncations.
+fn neimark_sacker_pairs(k: &mut KeyNumbers, d: &Fig5Data) {
+    use crate::analysis::continuation::BifurcationKind;
+    let mut first = Vec::new();
+    let mut second = Vec::new();
+    for set in d.branches.iter().filter(|s| s.modes >= 2) {
+        let mut ns: Vec<f64> = set
+            .branches
+            .iter()
+            .filter(|b| b.period_m == 1)
+            .flat_map(|b| &b.bifurcations)
+            .filter(|f| f.kind == BifurcationKind::NeimarkSacker)
+            .map(|f| f.parameter)
+            .collect();
+        ns.sort_by(f64::total_cmp);
+        ns.dedup_by(|a, b| (*a - *b).abs() < 1e-6 * b.abs());
+        if let [a, b] = ns[..] {
+            first.push(a);
+            second.push(b);
+        }
+    }
+    let range = |v: &[f64]| {
+        let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let r = |x| crate::base::report::round_sig(x, 3);
+        if r(lo) == r(hi) {
+            format!("{}", r(lo))
+        } else {
+            format!("{}–{}", r(lo), r(hi))
+        }
+    };
+    if first.is_empty() {
+        return k.text("N>=2 (1,1) Neimark-Sacker pair", "none");
+    }
+    k.text("N>=2 (1,1) first Neimark-Sacker", range(&first));
+    k.text("N>=2 (1,1) second Neimark-Sacker", range(&second));
 }

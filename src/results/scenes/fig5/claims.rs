@@ -3,7 +3,41 @@
 
 use super::Diagram;
 use crate::analysis::orbit::OrbitKind;
+use crate::base::report::{Cited, KeyValue, Uncertainty};
 use serde::Serialize;
+
+/// A change found on the k grid lies between two adjacent grid values: cited as their
+/// midpoint ± half the interval, the one form every table, verdict and key number prints.
+/// `first` marks the first grid value where something holds (the change is below it),
+/// otherwise the last one (the change is above it). `None` at either end of the grid.
+pub fn grid_threshold(grid: &[f64], x: f64, first: bool, scale: f64, unit: &str) -> Option<Cited> {
+    let i = grid.iter().position(|g| *g == x)?;
+    let (lo, hi) = if first {
+        (grid[i.checked_sub(1)?], x)
+    } else {
+        (x, *grid.get(i + 1)?)
+    };
+    Some(Cited::new(
+        0.5 * (lo + hi) / scale,
+        4,
+        Uncertainty::new(
+            0.5 * (hi - lo) / scale,
+            format!("between adjacent grid values {lo:.4} and {hi:.4} k₁ (log-spaced k grid)"),
+        ),
+        unit,
+    ))
+}
+
+/// [`grid_threshold`] for prose and tables: "2.69 ± 0.05", or what the grid says instead.
+pub fn threshold_text(grid: &[f64], x: Option<f64>, first: bool) -> String {
+    match x {
+        None => "never on the grid".into(),
+        Some(x) => grid_threshold(grid, x, first, 1.0, "").map_or_else(
+            || format!("at the end of the grid, {x:.3}"),
+            |c| KeyValue::Float(c).prose(true),
+        ),
+    }
+}
 
 /// The paper's three claims, measured.
 #[derive(Debug, Clone, Serialize)]

@@ -12,6 +12,7 @@
 pub mod branches;
 mod claims;
 pub mod render;
+pub mod rotation;
 
 pub use claims::Claims;
 use claims::claims;
@@ -185,6 +186,9 @@ pub struct Fig5Data {
     pub free_amplitude: (f64, f64),
     /// The continued branches, one set per N.
     pub branches: Vec<branches::BranchSet>,
+    /// The "not periodic" bands between each N's Neimark–Sacker pair, with their rotation
+    /// numbers.
+    pub bands: Vec<rotation::Band>,
 }
 
 /// The N = 1 model's k → ∞ limit: the impact oscillator with Newton's law, r = 1 (the
@@ -373,6 +377,7 @@ pub fn compute(p: &Fig5Params, progress: &(dyn Fn() + Sync)) -> Result<Fig5Data,
         rigid_limit,
         free_amplitude: unit,
         branches: Vec::new(),
+        bands: Vec::new(),
     };
     // one truncation per task: each set is traced in a fixed order
     data.branches = p
@@ -380,6 +385,7 @@ pub fn compute(p: &Fig5Params, progress: &(dyn Fn() + Sync)) -> Result<Fig5Data,
         .par_iter()
         .map(|&n| branches::branch_set(p, &data, n))
         .collect::<Result<_, _>>()?;
+    data.bands = rotation::bands(p, &data)?;
     Ok(data)
 }
 
@@ -444,32 +450,15 @@ impl Scene for Fig5 {
             Uncertainty::new(1e-9, "velocities on orbits settled to a residual of 1e-9"),
             "",
         );
-        // A change found on the grid lies between two adjacent grid values: cited as their
-        // midpoint ± half the interval. `first` marks the first grid value where something
-        // holds (the change is below it), otherwise the last one (the change is above it).
+        // a change between two adjacent grid values (see `claims::grid_threshold`)
         let mut threshold = |name: &str, v: Option<f64>, first: bool, scale: f64, unit: &str| {
             let Some(x) = v else {
                 return k.text(name, "never on the grid");
             };
-            let i = grid.iter().position(|g| *g == x).unwrap_or(0);
-            let (lo, hi) = if first {
-                (grid[i.saturating_sub(1)], x)
-            } else {
-                (x, grid[(i + 1).min(grid.len() - 1)])
-            };
-            if lo == hi {
-                return k.text(name, format!("at the end of the grid, {}", x / scale));
+            match claims::grid_threshold(grid, x, first, scale, unit) {
+                Some(c) => k.push(name, c),
+                None => k.text(name, format!("at the end of the grid, {}", x / scale)),
             }
-            k.cited(
-                name,
-                0.5 * (lo + hi) / scale,
-                4,
-                Uncertainty::new(
-                    0.5 * (hi - lo) / scale,
-                    format!("between adjacent grid values {lo:.4} and {hi:.4} k₁ (log-spaced k grid)"),
-                ),
-                unit,
-            );
         };
         threshold("first orbit difference N=10 vs N=1", c.first_orbit_difference, true, 1.0, "k₁");
         threshold("first velocity difference N=10 vs N=1", c.first_velocity_difference, true, 1.0, "k₁");
@@ -501,6 +490,7 @@ impl Scene for Fig5 {
             c.paper_figure4_set_reachable_at.len() as i64,
         );
         branches::key_numbers(&mut k, d);
+        rotation::key_numbers(&mut k, d);
         if let Some(r) = &d.rigid_limit {
             k.cited(
                 "N=1 rigid-limit impact velocity",
@@ -580,15 +570,9 @@ impl Scene for Fig5 {
                 _ => Outcome::Partly,
             },
             evidence: format!(
-                "all (1,1) within {:.1}% at the smallest k; N-dependence from between {:.3} and {:.3}$k_1$ (adjacent grid values); N = 3 and N = 10 reach the same orbits at {:.0}% of the k values",
+                "all (1,1) within {:.1}% at the smallest k; N-dependence from k = {} $k_1$; N = 3 and N = 10 reach the same orbits at {:.0}% of the k values",
                 100.0 * c.velocity_spread_at_smallest_k,
-                d.k_over_k1
-                    .iter()
-                    .rev()
-                    .find(|g| **g < onset)
-                    .copied()
-                    .unwrap_or(onset),
-                onset,
+                claims::threshold_text(&d.k_over_k1, onset.is_finite().then_some(onset), true),
                 100.0 * c.n3_n10_agreement
             ),
         }
@@ -598,6 +582,7 @@ impl Scene for Fig5 {
         let mut r = Rendered::new(render::plot(d)?, render::table(d));
         r.extra_tables
             .push(("transitions", render::transitions_table(d)));
+        r.extra_tables.push(("bands", render::bands_table(d)));
         Ok(r)
     }
 }

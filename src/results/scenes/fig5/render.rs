@@ -4,6 +4,7 @@ use crate::results::render::{
     cell, dashed_key, draw_legend, drawing, markdown_table, styled_mesh, RenderError,
     CAPTION_FONT, LABEL_FONT, WIDTH,
 };
+use crate::results::marker::{Marker, Shape};
 use super::Fig5Data;
 use plotters::prelude::*;
 
@@ -115,12 +116,12 @@ const UNSTABLE: ShapeStyle = ShapeStyle {
     filled: false,
     stroke_width: 2,
 };
-const MARKERS: [(K, &str, RGBColor); 5] = [
-    (K::PeriodDoubling, "period doubling", RGBColor(230, 120, 0)),
-    (K::Fold, "fold", RGBColor(120, 0, 160)),
-    (K::NeimarkSacker, "Neimark–Sacker", RGBColor(200, 0, 120)),
-    (K::Grazing, "grazing", RGBColor(0, 140, 60)),
-    (K::BranchPoint, "branch point", RGBColor(0, 0, 0)),
+const MARKERS: [(K, &str, RGBColor, Shape); 5] = [
+    (K::PeriodDoubling, "period doubling", RGBColor(230, 120, 0), Shape::Square),
+    (K::Fold, "fold", RGBColor(120, 0, 160), Shape::Triangle),
+    (K::NeimarkSacker, "Neimark–Sacker", RGBColor(200, 0, 120), Shape::Diamond),
+    (K::Grazing, "grazing", RGBColor(0, 140, 60), Shape::Circle),
+    (K::BranchPoint, "branch point", RGBColor(0, 0, 0), Shape::Cross),
 ];
 
 type Chart<'a, 'b> = ChartContext<
@@ -183,14 +184,14 @@ fn draw_branches(
             })
         })
         .collect();
-    for (kind, _, color) in MARKERS {
+    for (kind, _, color, shape) in MARKERS {
         let style = color.stroke_width(2);
         chart
             .draw_series(
                 marks
                     .iter()
                     .filter(|m| m.0 == kind)
-                    .map(|m| TriangleMarker::new((m.1, m.2), 6, style)),
+                    .map(|m| Marker::new((m.1, m.2), shape, 7, style)),
             )
             .map_err(drawing)?;
     }
@@ -226,7 +227,7 @@ fn branch_legend(
             .map_err(drawing)?;
     }
     entry(&mut x, "continued, unstable")?;
-    for (kind, name, color) in MARKERS {
+    for (kind, name, color, shape) in MARKERS {
         let found = d
             .branches
             .iter()
@@ -234,7 +235,7 @@ fn branch_legend(
             .any(|b| b.bifurcations.iter().any(|f| f.kind == kind));
         if found {
             strip
-                .draw(&TriangleMarker::new((x + 13, y), 6, color.stroke_width(2)))
+                .draw(&Marker::new((x + 13, y), shape, 7, color.stroke_width(2)))
                 .map_err(drawing)?;
             entry(&mut x, name)?;
         }
@@ -267,17 +268,17 @@ pub fn transitions_table(d: &Fig5Data) -> String {
             rows.push(vec![
                 n.to_string(),
                 format!("{} → {}", set(&t.from), set(&t.to)),
-                format!("{}–{}", cell(t.between.0, 3), cell(t.between.1, 3)),
+                super::claims::threshold_text(&d.k_over_k1, Some(t.between.1), true),
             ]);
         }
     }
-    markdown_table(&["N", "orbits reached (all starts)", "between k/k₁"], &rows)
+    markdown_table(&["N", "orbits reached (all starts)", "at k/k₁ (between two grid values)"], &rows)
 }
 
 /// The measured claims.
 pub fn table(d: &Fig5Data) -> String {
     let c = &d.claims;
-    let opt = |v: Option<f64>| v.map_or("never".to_string(), |k| cell(k, 3));
+    let threshold = |v: Option<f64>| super::claims::threshold_text(&d.k_over_k1, v, true);
     markdown_table(
         &["claim", "measured"],
         &[
@@ -294,11 +295,11 @@ pub fn table(d: &Fig5Data) -> String {
             ],
             vec![
                 "first k/k₁ with different orbits, N = 10 vs N = 1".into(),
-                opt(c.first_orbit_difference),
+                threshold(c.first_orbit_difference),
             ],
             vec![
                 "first k/k₁ with impact velocities > 5% apart, N = 10 vs N = 1".into(),
-                opt(c.first_velocity_difference),
+                threshold(c.first_velocity_difference),
             ],
             vec![
                 "fraction of k with the same orbits, N = 3 vs N = 10".into(),
@@ -310,7 +311,7 @@ pub fn table(d: &Fig5Data) -> String {
             ],
             vec![
                 "first k/k₁ where N = 3 from rest reaches the paper's (1,3)".into(),
-                opt(c.n3_one_three_from),
+                threshold(c.n3_one_three_from),
             ],
             vec![
                 "k/k₁ range where each N has the paper's Fig 4 orbit among its attractors".into(),
@@ -319,9 +320,9 @@ pub fn table(d: &Fig5Data) -> String {
                     c.paper_figure4_set_reachable_at.last(),
                 ) {
                     (Some(a), Some(b)) => format!(
-                        "{}–{} ({} of {} grid values)",
-                        cell(*a, 3),
-                        cell(*b, 3),
+                        "from {} to {} ({} of {} grid values)",
+                        super::claims::threshold_text(&d.k_over_k1, Some(*a), true),
+                        super::claims::threshold_text(&d.k_over_k1, Some(*b), false),
                         c.paper_figure4_set_reachable_at.len(),
                         d.k_over_k1.len()
                     ),
@@ -341,5 +342,42 @@ pub fn table(d: &Fig5Data) -> String {
                 },
             ],
         ],
+    )
+}
+
+/// The "not periodic" bands between each N's Neimark–Sacker pair, with their rotation
+/// numbers (see [`super::rotation`]).
+pub fn bands_table(d: &Fig5Data) -> String {
+    let rows: Vec<Vec<String>> = d
+        .bands
+        .iter()
+        .map(|b| {
+            let range = |f: fn(f64, f64) -> f64| {
+                b.points.iter().map(|q| q.rotation).fold(f64::NAN, f)
+            };
+            let worst = b.points.iter().map(|q| q.halves_differ).fold(0.0, f64::max);
+            vec![
+                b.modes.to_string(),
+                format!("{} and {}", cell(b.neimark_sacker.0, 3), cell(b.neimark_sacker.1, 3)),
+                format!("{} and {}", cell(b.onset_rotation.0, 3), cell(b.onset_rotation.1, 3)),
+                format!(
+                    "{} to {} ({} grid values)",
+                    cell(range(f64::max), 3),
+                    cell(range(f64::min), 3),
+                    b.points.len()
+                ),
+                format!("{worst:.0e}"),
+            ]
+        })
+        .collect();
+    markdown_table(
+        &[
+            "N",
+            "Neimark–Sacker pair, k/k₁",
+            "|arg μ|/2π there",
+            "ρ measured inside, from rest",
+            "largest change between halves",
+        ],
+        &rows,
     )
 }

@@ -11,6 +11,7 @@ use crate::results::render::{
     RenderError, CAPTION_FONT, WIDTH,
 };
 use plotters::prelude::*;
+use crate::results::marker::{Marker, Shape};
 
 const FREE: RGBColor = RGBColor(0, 114, 178);
 const CONTACT: RGBColor = RGBColor(213, 40, 0);
@@ -192,7 +193,7 @@ fn scan_panel<DB: DrawingBackend>(
         for f in b.bifurcations.iter().filter(|f| f.kind == "fold") {
             let x = f.gap_over_free_amplitude;
             chart
-                .draw_series(std::iter::once(TriangleMarker::new((x, 0.0), 7, RED.filled())))
+                .draw_series(std::iter::once(Marker::new((x, 0.0), Shape::Triangle, 8, RED.filled())))
                 .map_err(drawing)?;
         }
     }

@@ -17,6 +17,7 @@
 //! and of the Figure 6(b) model (N = 20, k = 1000k₁).
 
 pub mod render;
+pub mod scaling;
 
 use crate::base::report::{KeyNumbers, Uncertainty};
 use crate::results::scene::{Outcome, Progress, Rendered, Resolution, Scene, Verdict, Group};
@@ -44,6 +45,8 @@ pub struct WorkPrecisionParams {
     pub repeats: usize,
     /// Forcing periods of the two cost runs.
     pub cost_periods: u64,
+    /// The runs of cost against N and k.
+    pub scaling: scaling::ScalingParams,
 }
 
 impl WorkPrecisionParams {
@@ -58,6 +61,7 @@ impl WorkPrecisionParams {
             ],
             repeats: 3,
             cost_periods: 1000,
+            scaling: scaling::ScalingParams::book(),
         }
     }
 
@@ -70,6 +74,7 @@ impl WorkPrecisionParams {
             rtols: vec![1e-6, 1e-9, 1e-13],
             repeats: 1,
             cost_periods: 1000,
+            scaling: scaling::ScalingParams::test(),
         }
     }
 }
@@ -112,6 +117,8 @@ pub struct WorkPrecisionData {
     pub stiffest_eigenvalue: f64,
     /// The machine the wall times were measured on.
     pub machine: String,
+    /// Cost against N and k.
+    pub scaling: scaling::Scaling,
 }
 
 /// An error as quoted: a bound when it is at round-off (the digits there differ between
@@ -330,6 +337,7 @@ pub fn compute(p: &WorkPrecisionParams) -> Result<WorkPrecisionData, Error> {
         costs,
         stiffest_eigenvalue,
         machine: machine(),
+        scaling: scaling::compute(&p.scaling, p.repeats)?,
     })
 }
 
@@ -429,6 +437,7 @@ impl Scene for WorkPrecision {
                 "",
             );
         }
+        scaling_key_numbers(&mut k, &d.scaling);
         k
     }
 
@@ -453,7 +462,39 @@ impl Scene for WorkPrecision {
             extra_tables: vec![
                 ("costs", render::costs_table(d)),
                 ("timing", render::timing_summary(d)),
+                ("scaling", render::scaling_table(d)),
             ],
         })
+    }
+}
+
+/// The exponents of the work counters per period against N and k: exact counts, so the
+/// same on every machine (the times' exponents are in the table). Each is a least-squares
+/// slope; its uncertainty is the slope's standard error over the fitted points.
+fn scaling_key_numbers(k: &mut KeyNumbers, s: &scaling::Scaling) {
+    type Counter = fn(&Stats) -> u64;
+    let counters: [(&str, Counter); 2] = [
+        ("segments", |s| s.segments),
+        ("evaluations", |s| s.evaluations),
+    ];
+    let modes: Vec<usize> = s.along_modes.iter().map(|q| q.modes).collect();
+    for (line, pts, x, from) in [
+        ("N", &s.along_modes, (|q| q.modes as f64) as fn(&scaling::ScalingPoint) -> f64, scaling::fit_from(&modes)),
+        ("k", &s.along_stiffness, |q| q.k_over_k1, 0),
+    ] {
+        for (name, count) in counters {
+            let xy: Vec<(f64, f64)> = pts.iter().map(|q| (x(q), q.per_period(count(&q.stats)))).collect();
+            let key = format!("{name} per period, exponent in {line}");
+            match scaling::exponent(&xy, from) {
+                Some((slope, error)) if error.is_finite() => k.cited(
+                    key,
+                    slope,
+                    2,
+                    Uncertainty::new(error, "standard error of the least-squares slope of exact counts"),
+                    "",
+                ),
+                _ => k.text(key, "too few points"),
+            }
+        }
     }
 }

@@ -16,13 +16,15 @@ const FLOOR: f64 = 1e-16;
 pub fn plot(d: &WorkPrecisionData) -> Result<String, RenderError> {
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (WIDTH, 500)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, (WIDTH, 1000)).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
-        let panels = root.split_evenly((1, 2));
+        let (top, bottom) = root.split_vertically(500);
+        scaling_panels(&bottom, d)?;
+        let panels = top.split_evenly((1, 2));
         let (tmin, tmax) = d.points.iter().fold((f64::MAX, 0.0_f64), |(a, b), p| {
             (a.min(p.seconds), b.max(p.seconds))
         });
-        let titles = ["max event-time error", "relative end-state error"];
+        let titles = ["(a) max event-time error", "(b) relative end-state error"];
         for (i, panel) in panels.iter().enumerate() {
             let value = |p: &super::WorkPoint| {
                 let e = if i == 0 { p.event_error } else { p.state_error };
@@ -188,4 +190,138 @@ pub fn timing_summary(d: &WorkPrecisionData) -> String {
     }
     s.push('\n');
     s
+}
+
+/// (c) cost against N at k = 100k₁ and (d) against k at N = 10: wall time per period and
+/// per orbit with its multipliers, log–log.
+fn scaling_panels(
+    area: &DrawingArea<SVGBackend, plotters::coord::Shift>,
+    d: &WorkPrecisionData,
+) -> Result<(), RenderError> {
+    let panels = area.split_evenly((1, 2));
+    let lines = [
+        ("(c) cost against N, k = 100k₁", "N (modes)", &d.scaling.along_modes, true),
+        ("(d) cost against k, N = 10", "k / k₁", &d.scaling.along_stiffness, false),
+    ];
+    for (panel, (title, xdesc, pts, by_modes)) in panels.iter().zip(lines) {
+        let x = |q: &super::scaling::ScalingPoint| if by_modes { q.modes as f64 } else { q.k_over_k1 };
+        let series: [(&str, Vec<(f64, f64)>); 2] = [
+            ("per period", pts.iter().map(|q| (x(q), q.seconds_per_period)).collect()),
+            (
+                "per orbit with multipliers",
+                pts.iter().filter_map(|q| Some((x(q), q.seconds_per_orbit?))).collect(),
+            ),
+        ];
+        let all = series.iter().flat_map(|s| s.1.iter());
+        let (xmin, xmax, ymin, ymax) = all.fold((f64::MAX, 0.0f64, f64::MAX, 0.0f64), |a, p| {
+            (a.0.min(p.0), a.1.max(p.0), a.2.min(p.1), a.3.max(p.1))
+        });
+        if xmax <= 0.0 {
+            continue;
+        }
+        let mut chart = ChartBuilder::on(panel)
+            .caption(title, CAPTION_FONT)
+            .margin(10)
+            .margin_right(28)
+            .x_label_area_size(44)
+            .y_label_area_size(64)
+            .build_cartesian_2d(
+                (xmin / 1.3..xmax * 1.3).log_scale(),
+                (ymin / 3.0..ymax * 3.0).log_scale(),
+            )
+            .map_err(drawing)?;
+        // N is an integer: its ticks are the N computed
+        let ticks: Vec<f64> = pts.iter().map(x).collect();
+        styled_mesh(&mut chart)
+            .x_desc(xdesc)
+            .y_desc("wall time (s)")
+            .x_label_formatter(&|v| {
+                if by_modes {
+                    format!("{}", v.round())
+                } else {
+                    format!("{v:.0e}")
+                }
+            })
+            .x_labels(ticks.len() * 3)
+            .y_label_formatter(&|y| format!("{y:.0e}"))
+            .draw()
+            .map_err(drawing)?;
+        for (s, (label, p)) in series.iter().enumerate() {
+            let c = palette(s);
+            chart
+                .draw_series(LineSeries::new(p.clone(), c.stroke_width(2)))
+                .map_err(drawing)?
+                .label(*label)
+                .legend(solid_key(c.stroke_width(2)));
+            chart
+                .draw_series(p.iter().map(|&q| Circle::new(q, 4, c.filled())))
+                .map_err(drawing)?;
+        }
+        draw_legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
+    }
+    Ok(())
+}
+
+/// The scaling runs: per (N, k) the wall times and the work counters per period, then the
+/// fitted exponents.
+pub fn scaling_table(d: &WorkPrecisionData) -> String {
+    let sc = &d.scaling;
+    let table = {
+    let rows: Vec<Vec<String>> = sc
+        .along_modes
+        .iter()
+        .chain(&sc.along_stiffness)
+        .map(|q| {
+            vec![
+                q.modes.to_string(),
+                format_sig(q.k_over_k1, 2),
+                format!("{:.2}", q.seconds_per_period * 1e6),
+                q.seconds_per_orbit.map_or("—".into(), |t| format!("{:.3}", t * 1e3)),
+                format!("{:.1}", q.per_period(q.stats.segments)),
+                format!("{:.1}", q.per_period(q.stats.evaluations)),
+                format!("{:.1}", q.per_period(q.stats.steps)),
+            ]
+        })
+        .collect();
+    markdown_table(
+        &[
+            "N",
+            "k/k₁",
+            "µs per period",
+            "ms per orbit",
+            "segments per period",
+            "evaluations per period",
+            "certified steps per period",
+        ],
+        &rows,
+    )
+    };
+    // the times' exponents: this machine's, so stated here and not among the key numbers
+    let fit = |pts: &[super::scaling::ScalingPoint], x: &dyn Fn(&super::scaling::ScalingPoint) -> f64, per_orbit: bool, from: usize| {
+        let xy: Vec<(f64, f64)> = pts
+            .iter()
+            .filter_map(|q| Some((x(q), if per_orbit { q.seconds_per_orbit? } else { q.seconds_per_period })))
+            .collect();
+        super::scaling::exponent(&xy, from).map_or("—".to_string(), |(e, u)| {
+            if u.is_finite() {
+                format!("{e:.2} ± {:.2}", u.max(0.005))
+            } else {
+                format!("{e:.2}")
+            }
+        })
+    };
+    let modes: Vec<usize> = sc.along_modes.iter().map(|q| q.modes).collect();
+    let from = super::scaling::fit_from(&modes);
+    let n = |q: &super::scaling::ScalingPoint| q.modes as f64;
+    let k = |q: &super::scaling::ScalingPoint| q.k_over_k1;
+    format!(
+        "{table}\nThe wall time's exponents on this machine (least-squares slopes on log–log \
+         axes, ± their standard error; along N from N = {} on): per period {} in N, per orbit \
+         {} in N; per period {} in k, per orbit {} in k.\n",
+        modes.get(from).copied().unwrap_or(0),
+        fit(&sc.along_modes, &n, false, from),
+        fit(&sc.along_modes, &n, true, from),
+        fit(&sc.along_stiffness, &k, false, 0),
+        fit(&sc.along_stiffness, &k, true, 0),
+    )
 }
