@@ -787,6 +787,33 @@ fn item_14_errors_come_before_the_work_and_say_the_real_cause() {
     assert!(err.contains("got 1e300"), "{err}");
 }
 
+/// Item 14: a closed standard output (`>&-`) is refused, exit 2, with the reason on stderr;
+/// a stdout sent to /dev/null on purpose is not. (Linux: the check reads /proc.)
+#[test]
+#[cfg(target_os = "linux")]
+fn item_14_a_closed_stdout_is_refused_and_dev_null_is_not() {
+    let run = |redirect: &str| {
+        Command::new("sh")
+            .arg("-c")
+            .arg(format!("exec \"$0\" list {redirect}"))
+            .arg(env!("CARGO_BIN_EXE_cantilever"))
+            .output()
+            .expect("runs")
+    };
+    let closed = run(">&-");
+    let stderr = String::from_utf8_lossy(&closed.stderr);
+    assert_eq!(closed.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("standard output is closed"), "{stderr}");
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    let discarded = run(">/dev/null");
+    assert_eq!(
+        discarded.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&discarded.stderr)
+    );
+}
+
 #[test]
 fn item_15_the_energy_imbalance_is_judged_against_its_round_off_bound() {
     let (code, out, err) = cantilever(&[

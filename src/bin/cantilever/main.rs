@@ -15,6 +15,7 @@ mod orbit;
 mod out_dir;
 mod progress;
 mod simulate;
+mod stdio;
 
 use clap::{Parser, Subcommand};
 use impacting_cantilever::analysis::convergence;
@@ -308,6 +309,10 @@ fn clean_up_on_signals() {
 
 fn main() -> ExitCode {
     clean_up_on_signals();
+    if stdio::stdout_was_closed() {
+        errln!("standard output is closed (>&-): the results would be lost; redirect it to a file, or to /dev/null to discard them");
+        return ExitCode::from(2);
+    }
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) => {
