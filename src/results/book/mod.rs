@@ -328,20 +328,20 @@ pub fn summary_table(scenes: &[&dyn Entry], outputs: &[SceneNumbers]) -> String 
             "<div class=\"result\">\n\n**[{}]({})** — **{}**\n\n\
              *The paper:* {}\n\n*Our numbers:* {}.\n\n*Evidence:* {}.\n\n\
              Data: [data.json](generated/{name}/data.json) · \
-             [key numbers](generated/{name}/key_numbers.json)\n\n</div>\n\n",
+             [numbers with uncertainties](generated/{name}/key_numbers.json)\n\n</div>\n\n",
             for_html(spec.title()),
             spec.chapter(),
             capitalised(&out.verdict.outcome.to_string()),
             for_html(spec.claim()),
             numbers.join("; "),
-            for_html(&out.verdict.evidence)
+            capitalised(&for_html(&out.verdict.evidence))
         ));
     }
     s
 }
 
 /// "partly reproduced" → "Partly reproduced".
-fn capitalised(s: &str) -> String {
+pub(crate) fn capitalised(s: &str) -> String {
     let mut c = s.chars();
     c.next()
         .map(|f| f.to_uppercase().chain(c).collect())

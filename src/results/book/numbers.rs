@@ -85,7 +85,8 @@ impl NumbersPreprocessor {
                 out.push_str(&if kind == "verdict" {
                     format!("**{}.**", capitalised(&verdict.outcome.to_string()))
                 } else {
-                    for_html(&verdict.evidence)
+                    // it follows the verdict's full stop: a new sentence
+                    capitalised(&for_html(&verdict.evidence))
                 });
                 rest = &after[end + 2..];
                 continue;
@@ -125,7 +126,7 @@ impl NumbersPreprocessor {
                 .map(|b| format!(" ({})", human_size(*b)))
                 .unwrap_or_default();
             s.push_str(&format!(
-                " Data of `{scene}`: [data.json](generated/{scene}/data.json){size} · [key numbers \
+                " Data of `{scene}`: [data.json](generated/{scene}/data.json){size} · [its numbers \
                  with their uncertainties](generated/{scene}/key_numbers.json) · \
                  `cantilever cite {scene}`."
             ));

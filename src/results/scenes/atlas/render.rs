@@ -179,8 +179,8 @@ pub fn plot(d: &AtlasData) -> Result<String, RenderError> {
                     let corners = [
                         (d.omega_over_w1[j] - dw, l - dl),
                         (
-                            (d.omega_over_w1[end - 1] + 1.3 * dw).min(w1),
-                            (l + 1.3 * dl).min(l1),
+                            (d.omega_over_w1[end - 1] + 1.8 * dw).min(w1),
+                            (l + 1.8 * dl).min(l1),
                         ),
                     ];
                     chart

@@ -11,7 +11,7 @@ fn special(c: &Cell) -> Option<(RGBColor, &'static str)> {
         Cell::Unconverged => Some((RGBColor(120, 120, 120), "unconverged in N")),
         Cell::NotPeriodic => Some((RGBColor(200, 200, 200), "not periodic")),
         Cell::Coexisting => Some((RGBColor(213, 94, 0), "coexisting orbits")),
-        Cell::NoRealValue => Some((RGBColor(60, 60, 60), "no real r")),
+        Cell::NoRealValue => Some((RGBColor(60, 60, 60), "no real r_E")),
         Cell::NoContact => Some((WHITE, "no contact")),
     }
 }
@@ -36,7 +36,7 @@ pub fn plot(d: &MapData) -> Result<String, RenderError> {
         let l0 = p.k_over_k1.first().map_or(1.0, |k| k.log10()) - dk;
         let l1 = p.k_over_k1.last().map_or(4.0, |k| k.log10()) + dk;
         let mut chart = ChartBuilder::on(&map)
-            .caption("energetic restitution r over ω and k (d₀ = 0, ζ₁ = 0.01)", CAPTION_FONT)
+            .caption("energetic restitution r_E over ω and k (d₀ = 0, ζ₁ = 0.01)", CAPTION_FONT)
             .margin(8)
             .margin_right(20)
             .x_label_area_size(48)
@@ -50,7 +50,7 @@ pub fn plot(d: &MapData) -> Result<String, RenderError> {
             let corners = [(w - dw, l - dk), (w + dw, l + dk)];
             // the fill overlaps the next cell a little, so that anti-aliasing leaves no
             // hairline seams between cells (the outline keeps the cell's own size)
-            let fill = [(w - dw, l - dk), ((w + 1.3 * dw).min(w1), (l + 1.3 * dk).min(l1))];
+            let fill = [(w - dw, l - dk), ((w + 1.8 * dw).min(w1), (l + 1.8 * dk).min(l1))];
             let color = match special(&pt.cell) {
                 Some((c, _)) => c,
                 None => match pt.cell {
@@ -71,7 +71,7 @@ pub fn plot(d: &MapData) -> Result<String, RenderError> {
         let bar = side.margin(40, 60, 20, 20);
         let (bar_area, key_area) = bar.split_vertically(300);
         let mut bar_chart = ChartBuilder::on(&bar_area)
-            .caption("r", LABEL_FONT)
+            .caption("r_E", LABEL_FONT)
             .x_label_area_size(0)
             .y_label_area_size(44)
             .build_cartesian_2d(0.0..1.0, 0.0..1.0)
@@ -86,7 +86,8 @@ pub fn plot(d: &MapData) -> Result<String, RenderError> {
             let r = i as f64 / 100.0;
             bar_chart
                 .draw_series(std::iter::once(Rectangle::new(
-                    [(0.0, r), (1.0, r + 0.01)],
+                    // overlapping the next band: no hairline seams
+                    [(0.0, r), (1.0, (r + 0.015).min(1.0))],
                     viridis(r + 0.005).filled(),
                 )))
                 .map_err(drawing)?;

@@ -397,7 +397,7 @@ impl Scene for Fig5 {
     const NAME: &'static str = "fig5";
     const PAPER: &'static str = "Fig 5, §5.3";
     const TITLE: &'static str = "Fig 5: bifurcations in k";
-    const GIST: &'static str = "N-dependence from about k₂ ≈ 39k₁";
+    const GIST: &'static str = "N-dependence from about k₂ ≈ 39.3k₁";
     const GROUP: Group = Group::Paper;
     const SUMMARY: &'static str =
         "bifurcation diagrams in k (impact section), N = 1, 2, 3, 10, random starts";

@@ -374,7 +374,7 @@ pub fn bands_table(d: &Fig5Data) -> String {
         &[
             "N",
             "Neimark–Sacker pair, k/k₁",
-            "|arg μ|/2π there",
+            "∣arg μ∣/2π there",
             "ρ measured inside, from rest",
             "largest change between halves",
         ],

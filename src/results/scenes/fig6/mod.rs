@@ -546,7 +546,7 @@ fn branch_keys(k: &mut KeyNumbers, d: &Fig6Data) {
         k.text(
             "a (1,1) branch in d0 nearest grazing",
             format!(
-                "entry velocity {:.1e} ωA_free at d0/A_free = {:.4}, r_E = {}",
+                "entry velocity {:.1e} ωA_free at d₀/A_free = {:.4}, r_E = {}",
                 g.smallest_entry_velocity.unwrap_or(f64::NAN),
                 g.gap_over_free_amplitude,
                 g.r_e.map_or("no real value".to_string(), |r| format!("{r:.4}"))

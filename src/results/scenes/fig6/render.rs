@@ -133,7 +133,7 @@ fn scan_panel<DB: DrawingBackend>(
         }
     };
     // headroom above the points for the legend
-    let top = d.scan.iter().filter_map(value).fold(0.0_f64, f64::max).max(0.05) * 1.6;
+    let top = d.scan.iter().filter_map(value).fold(0.0_f64, f64::max).max(0.05) * 2.2;
     let mut chart = ChartBuilder::on(area)
         .caption(
             if velocity {
@@ -151,7 +151,7 @@ fn scan_panel<DB: DrawingBackend>(
         .map_err(drawing)?;
     styled_mesh(&mut chart)
         .x_desc("d₀ / free amplitude")
-        .y_desc(if velocity { "largest v / (ω · free amplitude)" } else { "energetic r, eq (39)" })
+        .y_desc(if velocity { "largest v / (ω · free amplitude)" } else { "energetic r_E, eq (39)" })
         .draw()
         .map_err(drawing)?;
     // colour by contacts per period n
@@ -190,11 +190,18 @@ fn scan_panel<DB: DrawingBackend>(
             .map_err(drawing)?
             .label("(1,1) branch in d₀, unstable")
             .legend(move |(x, y)| Circle::new((x + 12, y), 2, c.stroke_width(1)));
-        for f in b.bifurcations.iter().filter(|f| f.kind == "fold") {
-            let x = f.gap_over_free_amplitude;
+        let folds: Vec<f64> = b
+            .bifurcations
+            .iter()
+            .filter(|f| f.kind == "fold")
+            .map(|f| f.gap_over_free_amplitude)
+            .collect();
+        if !folds.is_empty() {
             chart
-                .draw_series(std::iter::once(Marker::new((x, 0.0), Shape::Triangle, 8, RED.filled())))
-                .map_err(drawing)?;
+                .draw_series(folds.iter().map(|&x| Marker::new((x, 0.0), Shape::Triangle, 8, RED.filled())))
+                .map_err(drawing)?
+                .label("fold of the branch (at its d₀)")
+                .legend(|(x, y)| Marker::new((x + 12, y), Shape::Triangle, 8, RED.filled()));
         }
     }
     if !velocity {

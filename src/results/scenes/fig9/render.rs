@@ -83,6 +83,9 @@ fn spectrum_panel<DB: DrawingBackend>(
     styled_mesh(&mut chart)
         .x_desc("harmonic n (frequency / ω)")
         .y_desc("Vₙ / (ω · free amplitude)")
+        // n is an integer: ticks every 5
+        .x_labels(n / 5 + 2)
+        .x_label_formatter(&|x| format!("{x:.0}"))
         .y_label_formatter(&|y| format!("{y:.0e}"))
         .draw()
         .map_err(drawing)?;
@@ -140,14 +143,26 @@ fn scan_panel<DB: DrawingBackend>(
         .y_label_area_size(44)
         .build_cartesian_2d((map(x0) - map(pad).min(0.05))..(map(x1) + 0.05), 0.0..top)
         .map_err(drawing)?;
+    // counts, and a scan over N, are integers: their ticks are printed as such
+    let integer_scan = xs.iter().all(|x| x.fract() == 0.0);
     styled_mesh(&mut chart)
         .x_desc(axis)
         .x_labels(4)
         .x_label_formatter(&|x| {
             if log {
                 format!("{:.0}", 10f64.powf(*x))
+            } else if integer_scan && x.fract().abs() < 1e-9 {
+                format!("{x:.0}")
             } else {
                 format!("{x:.1}")
+            }
+        })
+        .y_labels((top as usize / 2 + 1).min(11))
+        .y_label_formatter(&|y| {
+            if y.fract().abs() < 1e-9 {
+                format!("{y:.0}")
+            } else {
+                format!("{y:.1}")
             }
         })
         .draw()
@@ -197,7 +212,7 @@ pub fn plot(d: &Fig9Data) -> Result<String, RenderError> {
             ))
             .map_err(drawing)?;
         let cells = cells.split_evenly((1, 4));
-        scan_panel(&cells[0], "d₀ / free amplitude", "d₀ / A", &d.scan_gap, false)?;
+        scan_panel(&cells[0], "d₀ / free amplitude", "d₀ / A_free", &d.scan_gap, false)?;
         scan_panel(&cells[1], "stop stiffness", "k / k₁", &d.scan_k, true)?;
         scan_panel(&cells[2], "forcing frequency", "ω / (β₁⁻)²", &d.scan_omega, false)?;
         scan_panel(&cells[3], "truncation", "N", &d.scan_modes, false)?;

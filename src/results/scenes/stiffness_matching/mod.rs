@@ -459,7 +459,7 @@ impl Scene for StiffnessMatching {
         Verdict {
             outcome: if agree == total && tb == total && converging < rigid { Outcome::Reproduced } else { Outcome::Partly },
             evidence: format!(
-                "at every k the Galerkin model converges in N (observed orders {lo:.1} to {hi:.1}, as the k/β_N³ tail predicts) and its limit agrees with the finite-element beam's in {agree} of {total} observables; the modes needed for 1 % (found in the scan) are {needed}; after one contact the velocity profile changes in L² by {converging:.1e} between the last two N at finite k (converging to the continuum's profile, tip included) and by {rigid:.2} under the rigid law (converging in L² only, to the pre-impact profile, like 2/√N, and not at the tip); the two-basis truncation converges to the same limits ({tb} of {total} agree), losing an energy fraction per switch into contact that falls like N^{slo:.1} to N^{shi:.1}",
+                "at every k the Galerkin model converges in N (observed orders {lo:.1} to {hi:.1}, as the k/β_N³ tail predicts) and its limit agrees with the finite-element beam's in {agree} of {total} observables; the modes needed for 1 % (found in the scan) are {needed}; after one contact the velocity profile changes in L² by {converging:.1e} between the last two N at finite k (converging to the continuum's profile, tip included) and by {rigid:.2} under the rigid law (converging in L² only, to the pre-impact profile, like 2/√N, and not at the tip); the two-basis truncation converges to the same limits ({tb} of {total} agree), losing an energy fraction per switch into contact that falls like $N^{{{slo:.1}}}$ to $N^{{{shi:.1}}}$",
                 needed = d
                     .stiffness
                     .iter()

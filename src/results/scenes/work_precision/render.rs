@@ -219,6 +219,9 @@ fn scaling_panels(
         if xmax <= 0.0 {
             continue;
         }
+        // ticks exactly at the N (or k) computed: N is an integer
+        let mut ticks: Vec<f64> = pts.iter().map(x).collect();
+        ticks.dedup();
         let mut chart = ChartBuilder::on(panel)
             .caption(title, CAPTION_FONT)
             .margin(10)
@@ -226,12 +229,10 @@ fn scaling_panels(
             .x_label_area_size(44)
             .y_label_area_size(64)
             .build_cartesian_2d(
-                (xmin / 1.3..xmax * 1.3).log_scale(),
+                (xmin / 1.3..xmax * 1.3).log_scale().with_key_points(ticks),
                 (ymin / 3.0..ymax * 3.0).log_scale(),
             )
             .map_err(drawing)?;
-        // N is an integer: its ticks are the N computed
-        let ticks: Vec<f64> = pts.iter().map(x).collect();
         styled_mesh(&mut chart)
             .x_desc(xdesc)
             .y_desc("wall time (s)")
@@ -242,7 +243,6 @@ fn scaling_panels(
                     format!("{v:.0e}")
                 }
             })
-            .x_labels(ticks.len() * 3)
             .y_label_formatter(&|y| format!("{y:.0e}"))
             .draw()
             .map_err(drawing)?;
