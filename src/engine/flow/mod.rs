@@ -337,19 +337,23 @@ impl RegionFlow {
     /// x_p at forcing phase θ = ωt: Re(X e^{iθ}) + x_s.
     pub fn particular(&self, phase: f64) -> DVector<f64> {
         let e = polar(1.0, phase);
-        DVector::from_iterator(
-            2 * self.modes,
-            self.forced
-                .iter()
-                .zip(self.static_state.iter())
-                .map(|(x, s)| (x * e).re + s),
-        )
+        // over the slices: nalgebra's zipped iterators cost more than the arithmetic here
+        let mut x = self.static_state.clone();
+        for (xi, f) in x.as_mut_slice().iter_mut().zip(self.forced.as_slice()) {
+            *xi += (f * e).re;
+        }
+        x
     }
 
     /// The real modal coordinates y of state `x` at forcing phase θ: the real and
     /// imaginary parts of w = V⁻¹(x − x_p(θ)) over the terms.
     pub fn modal(&self, x: &DVector<f64>, phase: f64) -> DVector<f64> {
-        &self.to_modal * (x - self.particular(phase))
+        // x − x_p in x_p's storage (one allocation fewer)
+        let mut d = self.particular(phase);
+        for (di, xi) in d.as_mut_slice().iter_mut().zip(x.as_slice()) {
+            *di = xi - *di;
+        }
+        &self.to_modal * d
     }
 
     /// The complex coefficient w_k of a pair or real term (for a block, its first

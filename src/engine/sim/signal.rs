@@ -186,7 +186,15 @@ impl TipSignal {
         level_scale: f64,
         terms: impl IntoIterator<Item = Term>,
     ) -> Self {
-        let (mut pairs, mut reals, mut blocks) = (Vec::new(), Vec::new(), Vec::new());
+        // sized once (a segment is built at every switch: growing the vectors by pushes
+        // cost more than filling them)
+        let terms = terms.into_iter();
+        let count = terms.size_hint().0;
+        let (mut pairs, mut reals, mut blocks) = (
+            Vec::with_capacity(count),
+            Vec::with_capacity(count),
+            Vec::new(),
+        );
         // the negligible size is relative to the signal itself, not to the levels it is
         // compared with: a gap of 1e14 must not make the transient "negligible"
         let _ = level_scale;
@@ -310,8 +318,14 @@ impl Signal for TipSignal {
             let mag = if s >= t.negligible_from {
                 tiny
             } else {
-                let decay = decay(t.lambda.re * s);
-                let z = t.a * polar(decay, t.lambda.im * s);
+                // at s = 0 (every segment's start) e^{λs} = 1 + 0i exactly: no exp or sincos
+                let (decay, turn) = if s == 0.0 {
+                    (1.0, Complex64::new(1.0, 0.0))
+                } else {
+                    let decay = decay(t.lambda.re * s);
+                    (decay, polar(decay, t.lambda.im * s))
+                };
+                let z = t.a * turn;
                 let zl = z * t.lambda;
                 d += z.re;
                 v += zl.re;
@@ -327,7 +341,7 @@ impl Signal for TipSignal {
             let mag = if s >= t.negligible_from {
                 tiny
             } else {
-                let z = t.a * decay(t.lambda * s);
+                let z = t.a * if s == 0.0 { 1.0 } else { decay(t.lambda * s) };
                 d += z;
                 v += z * t.lambda;
                 acc += z * l2;
