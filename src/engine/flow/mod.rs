@@ -373,6 +373,14 @@ impl RegionFlow {
     /// the 2N unit vectors through [`Self::state`] took 2N + 1 projections.
     pub fn jacobian(&self, s: f64) -> DMatrix<f64> {
         let mut et = self.to_modal.clone();
+        self.evolve_rows(s, &mut et);
+        &self.from_modal * et
+    }
+
+    /// E(s)·m in place: the evolution of the real modal coordinates over s (the block
+    /// diagonal E(s) of [`Self::jacobian`]) applied to the rows of m, which are indexed by
+    /// the modal coordinates.
+    pub fn evolve_rows(&self, s: f64, et: &mut DMatrix<f64>) {
         for t in &self.terms {
             let (i, j) = (t.slot, t.slot + 1);
             let mix = |et: &mut DMatrix<f64>, e: [[f64; 2]; 2]| {
@@ -383,11 +391,11 @@ impl RegionFlow {
                 }
             };
             match t.kind {
-                TermKind::Block { block, .. } => mix(&mut et, block.exp(s)),
+                TermKind::Block { block, .. } => mix(et, block.exp(s)),
                 TermKind::Pair => {
                     let c = polar(decay(t.lambda.re * s), t.lambda.im * s);
                     // (a + ib)(c.re + i c.im)
-                    mix(&mut et, [[c.re, -c.im], [c.im, c.re]]);
+                    mix(et, [[c.re, -c.im], [c.im, c.re]]);
                 }
                 TermKind::Real => {
                     let e = decay(t.lambda.re * s);
@@ -395,7 +403,16 @@ impl RegionFlow {
                 }
             }
         }
-        &self.from_modal * et
+    }
+
+    /// T: the real 2N × 2N map from x − x_p to the modal coordinates.
+    pub fn to_modal(&self) -> &DMatrix<f64> {
+        &self.to_modal
+    }
+
+    /// F: the real 2N × 2N map from the modal coordinates back to the state (F·T = I).
+    pub fn from_modal(&self) -> &DMatrix<f64> {
+        &self.from_modal
     }
 
     /// The state s after a point with modal coordinates `y` and forcing phase θ.

@@ -140,6 +140,8 @@ pub struct Simulator {
     settings: Settings,
     /// Tables for the exact energy integrals of the − and + regions, built on first use.
     energy_tables: OnceLock<[EnergyTables; 2]>,
+    /// The modal maps at a switch into the − and + regions ([`monodromy`]), on first use.
+    switch_maps: OnceLock<[nalgebra::DMatrix<f64>; 2]>,
 }
 
 /// One segment: a region's flow from modal coordinates y at forcing phase θ₀.
@@ -251,6 +253,7 @@ impl Simulator {
             model,
             settings: Settings::default(),
             energy_tables: OnceLock::new(),
+            switch_maps: OnceLock::new(),
         })
     }
 

@@ -1,35 +1,72 @@
 //! The Jacobian of a run: the monodromy matrix as the product of the segments' exact
 //! exponentials (the saltation at a switch of the compliant model is the identity; see
 //! [`crate::analysis::shooting`]).
+//!
+//! A segment's exponential is Φ(s) = F·E(s)·T ([`RegionFlow::jacobian`]): T maps the
+//! state to the region's modal coordinates, E(s) evolves them (block diagonal), F maps them
+//! back. In a product the inner F·T pairs cancel, T_b·F_a = I within a region and the fixed
+//! matrix C = T_b·F_a at a switch from region a to b, so
+//!
+//! ```text
+//! M = Φ_k ⋯ Φ₁ = F_k · E_k · C · E_{k−1} ⋯ C · E₁ · T₁,
+//! ```
+//!
+//! one 2N × 2N product per switch and one at the end, where forming each Φ and multiplying
+//! it in took two per segment. The product is carried in the modal coordinates of the
+//! current region and mapped back to the state when the run ends.
 
-use super::{Observer, SegmentView};
-use nalgebra::DMatrix;
+use super::{Clock, Observer, SegmentView, Simulator, Stats};
+use crate::engine::flow::RegionFlow;
+use crate::model::galerkin::Region;
+use nalgebra::{DMatrix, DVector};
 
 /// Accumulates the monodromy M = Φ_k ⋯ Φ₁ of a run (see the module doc).
 #[derive(Debug, Clone, Default)]
 pub struct Monodromy {
-    /// The product so far (None before the first segment).
+    /// The product, set when the run ends (None before, or for a run without segments).
     pub matrix: Option<DMatrix<f64>>,
+    /// E_k ⋯ E₁·T₁ during the run, in the modal coordinates of region `.0`.
+    modal: Option<(Region, DMatrix<f64>)>,
 }
 
 impl Observer for Monodromy {
     fn segment(&mut self, seg: &SegmentView) {
-        let phi = segment_jacobian(seg);
-        self.matrix = Some(match self.matrix.take() {
-            None => phi,
-            Some(m) => phi * m,
-        });
+        let flow = seg.flow();
+        let product = match self.modal.take() {
+            None => flow.to_modal().clone(),
+            // the same region: T·F = I
+            Some((region, p)) if region == seg.region => p,
+            Some((_, p)) => seg.simulator().switch_map(seg.region) * p,
+        };
+        let mut product = product;
+        flow.evolve_rows(seg.end, &mut product);
+        self.modal = Some((seg.region, product));
+    }
+
+    fn end(&mut self, sim: &Simulator, _clock: &Clock, _x: &DVector<f64>, _stats: &Stats) {
+        if let Some((region, p)) = self.modal.take() {
+            self.matrix = Some(sim.flow(region).from_modal() * p);
+        }
     }
 }
 
-/// Φ(s_end) of one segment: column i is the flow of the homogeneous part from e_i.
-fn segment_jacobian(seg: &SegmentView) -> DMatrix<f64> {
-    flow_jacobian(seg.flow(), seg.phase(), seg.end)
+impl Simulator {
+    /// C = T_b·F_a for a switch into region b from the other region a: the modal
+    /// coordinates of a mapped to those of b (the state is continuous at a switch). Built
+    /// on first use, two 2N × 2N products, so a simulator that never forms a monodromy
+    /// (a 400-mode run) does not pay for them.
+    pub(crate) fn switch_map(&self, into: Region) -> &DMatrix<f64> {
+        let maps = self.switch_maps.get_or_init(|| {
+            let c = |b: &RegionFlow, a: &RegionFlow| b.to_modal() * a.from_modal();
+            [c(&self.free, &self.contact), c(&self.contact, &self.free)]
+        });
+        &maps[usize::from(into == Region::Contact)]
+    }
 }
 
 /// Φ(s) = e^{As} of a region's flow (the forcing does not enter a Jacobian; `theta`, the
 /// forcing phase, is kept for the callers' symmetry with the state map).
-pub fn flow_jacobian(flow: &crate::engine::flow::RegionFlow, _theta: f64, s: f64) -> DMatrix<f64> {
+pub fn flow_jacobian(flow: &RegionFlow, _theta: f64, s: f64) -> DMatrix<f64> {
     flow.jacobian(s)
 }
 
@@ -39,6 +76,51 @@ mod tests {
     use crate::model::galerkin::Region;
     use nalgebra::DMatrix;
     use nalgebra::DVector;
+
+    /// The product carried in modal coordinates equals the product of the segments' Φ
+    /// formed one by one (the definition), over runs with switches both ways and a period
+    /// boundary inside a region.
+    #[test]
+    fn the_modal_product_is_the_product_of_the_segments_exponentials() {
+        use crate::engine::sim::{Monodromy, Observer, SegmentView, Simulator, Strobe};
+        #[derive(Default)]
+        struct Product(Option<DMatrix<f64>>, usize);
+        impl Observer for Product {
+            fn segment(&mut self, seg: &SegmentView) {
+                let phi = seg.flow().jacobian(seg.end);
+                self.0 = Some(match self.0.take() {
+                    None => phi,
+                    Some(m) => phi * m,
+                });
+                self.1 += 1;
+            }
+        }
+        for (modes, k) in [(10, 100.0), (3, 3000.0)] {
+            let forced = crate::model::problems::Forced {
+                modes,
+                k_over_k1: k,
+                zeta1: 0.01,
+                omega_over_w1: 2.0,
+                gap: 0.0,
+                printed_eq37_amplitude: false,
+            };
+            let sim = Simulator::new(forced.model().unwrap()).unwrap();
+            let x0 = DVector::zeros(2 * modes);
+            let (mut mono, mut direct) = (Monodromy::default(), Product::default());
+            // the strobe splits segments at the period boundaries
+            let mut strobe = Strobe::default();
+            sim.run(&x0, 3, &mut (&mut mono, &mut direct, &mut strobe))
+                .unwrap();
+            assert!(direct.1 > 4, "too few segments: {}", direct.1);
+            let (ours, theirs) = (mono.matrix.unwrap(), direct.0.unwrap());
+            let tol = 64.0 * f64::EPSILON * sim.condition() * theirs.amax() * direct.1 as f64;
+            assert!(
+                (&ours - &theirs).amax() <= tol,
+                "N = {modes}: {:e} > {tol:e}",
+                (&ours - &theirs).amax()
+            );
+        }
+    }
 
     /// Φ(s) in closed form against the flow of the 2N unit vectors less the flow of 0
     /// (the definition), for pairs, over-damped real terms and a critically damped block.
