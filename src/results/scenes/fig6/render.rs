@@ -31,12 +31,12 @@ fn title(c: &Case) -> String {
     let which = if c.panel == "b" {
         "(b)".to_string()
     } else {
-        format!("(a), d₀/A = {:.3}", c.gap_over_free_amplitude)
+        format!("(a), d₀/A_free = {:.3}", c.gap_over_free_amplitude)
     };
     let r = c
         .coefficient
         .and_then(|r| r.value())
-        .map_or(String::new(), |r| format!(", energetic r = {r:.3}"));
+        .map_or(String::new(), |r| format!(", r_E = {r:.3}"));
     format!("{which}: {}{r}", c.kind)
 }
 
@@ -111,7 +111,7 @@ fn case_panel<DB: DrawingBackend>(
         chart
             .draw_series(LineSeries::new(o.samples.iter().cloned(), ONE_MODE.stroke_width(2)))
             .map_err(drawing)?
-            .label(format!("one mode, r = {:.3}", o.restitution))
+            .label(format!("one mode, r = r_E = {:.3}", o.restitution))
             .legend(solid_key(ONE_MODE.stroke_width(2)));
     }
     draw_legend(&mut chart, SeriesLabelPosition::UpperRight)?;
@@ -133,7 +133,7 @@ fn scan_panel<DB: DrawingBackend>(
         }
     };
     // headroom above the points for the legend
-    let top = d.scan.iter().filter_map(value).fold(0.0_f64, f64::max).max(0.05) * 2.2;
+    let top = d.scan.iter().filter_map(value).fold(0.0_f64, f64::max).max(0.05) * 2.4;
     let mut chart = ChartBuilder::on(area)
         .caption(
             if velocity {
@@ -169,7 +169,7 @@ fn scan_panel<DB: DrawingBackend>(
         chart
             .draw_series(pts.iter().map(|&p| Circle::new(p, 4, c.filled())))
             .map_err(drawing)?
-            .label(format!("{n} contact{} per period", if n > 1 { "s" } else { "" }))
+            .label(format!("{n} contact{}", if n > 1 { "s" } else { "" }))
             .legend(move |(x, y)| Circle::new((x + 12, y), 4, c.filled()));
     }
     // the (1,1) branch continued in d₀: solid where stable, dotted where not
@@ -183,12 +183,12 @@ fn scan_panel<DB: DrawingBackend>(
         chart
             .draw_series(stable.iter().filter_map(|q| on(q)).map(|p| Circle::new(p, 2, c.filled())))
             .map_err(drawing)?
-            .label("(1,1) branch in d₀, stable")
+            .label("(1,1) branch, stable")
             .legend(move |(x, y)| Circle::new((x + 12, y), 2, c.filled()));
         chart
             .draw_series(unstable.iter().filter_map(|q| on(q)).map(|p| Circle::new(p, 2, c.stroke_width(1))))
             .map_err(drawing)?
-            .label("(1,1) branch in d₀, unstable")
+            .label("(1,1) branch, unstable")
             .legend(move |(x, y)| Circle::new((x + 12, y), 2, c.stroke_width(1)));
         let folds: Vec<f64> = b
             .bifurcations
@@ -200,7 +200,7 @@ fn scan_panel<DB: DrawingBackend>(
             chart
                 .draw_series(folds.iter().map(|&x| Marker::new((x, 0.0), Shape::Triangle, 8, RED.filled())))
                 .map_err(drawing)?
-                .label("fold of the branch (at its d₀)")
+                .label("its folds")
                 .legend(|(x, y)| Marker::new((x + 12, y), Shape::Triangle, 8, RED.filled()));
         }
     }
@@ -238,7 +238,7 @@ pub fn plot(d: &Fig6Data) -> Result<String, RenderError> {
     let rows = d.cases.len().div_ceil(2);
     let mut svg = String::new();
     {
-        let height = 360 * rows as u32 + 400;
+        let height = 360 * rows as u32 + 560;
         let root = SVGBackend::with_string(&mut svg, (WIDTH, height)).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
         let (top, bottom) = root.split_vertically(360 * rows as u32);
