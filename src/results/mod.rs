@@ -8,6 +8,7 @@ pub mod files;
 #[cfg(feature = "plots")]
 pub mod marker;
 pub mod peers;
+#[cfg(feature = "plots")]
 pub mod render;
 pub mod scene;
 #[cfg(feature = "plots")]
