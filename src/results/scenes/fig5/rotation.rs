@@ -248,26 +248,26 @@ pub(super) fn key_numbers(k: &mut KeyNumbers, d: &Fig5Data) {
             .filter(|q| q.rotation < 0.25)
             .map(|q| q.k_over_k1)
             .fold(f64::NAN, f64::min);
-        if last_above < first_below {
-            k.text(
-                format!("N={} band rotation passes 1/4 between", b.modes),
-                format!("{} and {}", r4(last_above), r4(first_below)),
-            );
-        }
+        k.text(
+            format!("N={} band rotation passes 1/4 between", b.modes),
+            if last_above < first_below {
+                format!("{} and {}", r4(last_above), r4(first_below))
+            } else {
+                "not between two measured values".to_string()
+            },
+        );
         let isola = d
             .branches
             .iter()
             .filter(|s| s.modes == b.modes)
             .flat_map(|s| &s.branches)
-            .find(|br| br.period_m == 4 && br.end.starts_with("closed loop"));
-        if let Some(br) = isola {
-            let ks = br.points.iter().map(|q| q.k_over_k1);
-            let (lo, hi) = ks.fold((f64::INFINITY, 0.0f64), |(a, c), x| (a.min(x), c.max(x)));
-            k.text(
-                format!("N={} period-4 isola", b.modes),
-                format!("{} to {}", r4(lo), r4(hi)),
-            );
-        }
+            .find(|br| br.period_m == 4 && br.end.starts_with("closed loop"))
+            .map_or("not traced".to_string(), |br| {
+                let ks = br.points.iter().map(|q| q.k_over_k1);
+                let (lo, hi) = ks.fold((f64::INFINITY, 0.0f64), |(a, c), x| (a.min(x), c.max(x)));
+                format!("{} to {}", r4(lo), r4(hi))
+            });
+        k.text(format!("N={} period-4 isola", b.modes), isola);
     }
 }
 
