@@ -224,3 +224,80 @@ fn every_model_variant_settles_through_one_interface() {
     let err = shooting::shoot(&two_basis, &two_basis.rest(), 1).unwrap_err();
     assert!(err.to_string().contains("no Jacobian"), "{err}");
 }
+
+/// Figure 4's N = 2 (2,4) orbit carried from k = 100k₁ to `k` in steps of at most 5 %
+/// (each shot from the last), with its simulator.
+fn two_four_at(k: f64) -> (Simulator, PeriodicOrbit) {
+    let mut o = orbit(&fig4(2), 1000, 2);
+    let mut at: f64 = 100.0;
+    loop {
+        at = (at * 1.05).min(k);
+        let mut p = problems::figure4(2);
+        p.k_over_k1 = at;
+        let sim = Simulator::new(p.model().unwrap()).unwrap();
+        o = shooting::shoot_at_period(&sim, &o.state_vector(), 2, 40).unwrap();
+        if at == k {
+            return (sim, o);
+        }
+    }
+}
+
+#[test]
+fn a_slowly_converging_orbit_is_labelled_at_its_least_period() {
+    use impacting_cantilever::analysis::orbit::{
+        detect_period_by, label, settle_map, OrbitKind, PERIODIC_TOLERANCE,
+    };
+    use impacting_cantilever::engine::map::PeriodMap;
+    // N = 2 at k = 286.61k₁: the (2,4) orbit is stable, its multiplier of P² −0.971 (the
+    // branch doubles at 303.4k₁). A start near it approaches along that multiplier, so
+    // after 2 periods it returns to about 2e, after 4 to about 2(1 − 0.971)e: for a while
+    // only period 4 passes the 1e-9 test, and the bare test would say (4,8).
+    let (sim, o) = two_four_at(286.61);
+    assert_eq!((o.period_m, o.impacts_n), (2, 4));
+    assert!(
+        (o.spectral_radius() - 0.971).abs() < 0.01,
+        "{}",
+        o.spectral_radius()
+    );
+    let mut x = o.state_vector();
+    let scale = x.amax();
+    x[0] += 1e-3 * scale;
+    // run on, 10 periods at a time, until the bare test takes period 4 (the decay is
+    // geometric, so this is reached; the other multipliers, |μ| < 0.5, are gone by then)
+    let mut found = false;
+    for i in 0..100 {
+        let w = settle_map(&sim, &x, 10, 50).unwrap();
+        let (m, _) = detect_period_by(&w.window.strobe, PERIODIC_TOLERANCE, 32, &|a, b| {
+            sim.residual(a, b)
+        });
+        if m == Some(4) {
+            let (kind, _) = label(&sim, &w.window);
+            assert_eq!(kind, OrbitKind::Periodic { m: 2, n: 4 });
+            // and the settled state is the orbit's
+            let r = relative_residual(&w.state, &o.state_vector());
+            assert!(r < 1e-10, "settled state {r:e} from the orbit");
+            found = true;
+            break;
+        }
+        assert_ne!(
+            m,
+            Some(2),
+            "period 2 passed before period 4 did, after {i} steps"
+        );
+        // on from where the run is, not from the orbit the label may have found
+        x = w.window.state;
+    }
+    assert!(found, "the bare test never took period 4");
+}
+
+#[test]
+fn a_genuine_period_doubled_orbit_keeps_its_period() {
+    use impacting_cantilever::analysis::orbit::{settle_map, OrbitKind};
+    // past the doubling, at 307.21k₁, the (4,8) orbit is genuine and the (2,4) one unstable:
+    // a run leaving the (2,4) orbit is labelled (4,8), never reduced to the unstable (2,4)
+    let (sim, two) = two_four_at(307.21);
+    assert!(!two.stable, "the (2,4) orbit is unstable past its doubling");
+    let x = two.state_vector().map(|v| v * (1.0 + 1e-4));
+    let w = settle_map(&sim, &x, 3000, 50).unwrap();
+    assert_eq!(w.kind, OrbitKind::Periodic { m: 4, n: 8 });
+}

@@ -9,7 +9,9 @@
 //!
 //! An orbit is labelled (m, n): period m forcing cycles, n entries into contact per period.
 //! When no m ≤ 32 passes, the orbit is reported as not periodic with its best residual —
-//! quasi-periodic, chaotic, or not yet settled — rather than forced into a label.
+//! quasi-periodic, chaotic, or not yet settled — rather than forced into a label. Near a
+//! bifurcation the bare test can mislabel a slowly converging orbit (a period-d orbit near
+//! its period doubling passes at 2d first); there Newton shooting decides ([`label`]).
 
 use crate::engine::map::{PeriodMap, Periods};
 use crate::engine::sim::{Dense, Event, Events, Sample, Simulator, Strobe};
@@ -53,18 +55,72 @@ pub fn detect_period_by(
     (None, best)
 }
 
+/// A window that is not periodic but returns to within this relative distance of itself
+/// after some m periods is checked by shooting ([`label`]): it may be converging, slowly,
+/// to a stable orbit (near a bifurcation, where a multiplier nears the unit circle, the
+/// transient decays like |μ|ⁿ). Beyond it the window is too far from any orbit for Newton.
+pub const SHOOT_BELOW: f64 = 1e-3;
+
 /// The (m, n) label of a window: m from its strobe ([`detect_period_by`]), n the entries
 /// into contact of its last m periods; and the best residual.
+///
+/// **Least period and slow transients.** Near a period doubling of a period-d orbit its
+/// multiplier μ of P^d is near −1: a state a distance e from the orbit returns after d
+/// periods to about 2e, but after 2d periods to about 2(1 − |μ|)e, so the window passes the
+/// test at 2d long before it does at d — a stable period-d orbit labelled with period 2d.
+/// Likewise a window that has not settled within the tolerance is "not periodic". So when
+/// a proper divisor d of m returns to within [`crate::analysis::shooting::LEAST_PERIOD`], or
+/// no m passes but one returns to within [`SHOOT_BELOW`], Newton shooting from the last
+/// strobe state decides (for models with a Jacobian): if it converges close by to a
+/// *stable* orbit, the window is labelled with that orbit's least period and contacts —
+/// the orbit the run is converging to. An unstable orbit close by (a genuine period-2d
+/// orbit just past its doubling lies near the unstable period-d one) leaves the label as
+/// detected.
 pub fn label<M: PeriodMap + ?Sized>(model: &M, window: &Periods) -> (OrbitKind, f64) {
-    let (m, residual) =
-        detect_period_by(&window.strobe, PERIODIC_TOLERANCE, MAX_PERIOD, &|a, b| {
-            model.residual(a, b)
-        });
-    let kind = m.map_or(OrbitKind::NotPeriodic, |m| OrbitKind::Periodic {
+    let (kind, residual, _) = label_with_orbit(model, window);
+    (kind, residual)
+}
+
+/// [`label`], and the state of the stable orbit at the window's last strobe when shooting
+/// decided the label (the run was still converging to it).
+pub fn label_with_orbit<M: PeriodMap + ?Sized>(
+    model: &M,
+    window: &Periods,
+) -> (OrbitKind, f64, Option<DVector<f64>>) {
+    let distance = |a: &DVector<f64>, b: &DVector<f64>| model.residual(a, b);
+    let (m, residual) = detect_period_by(&window.strobe, PERIODIC_TOLERANCE, MAX_PERIOD, &distance);
+    let detected = m.map_or(OrbitKind::NotPeriodic, |m| OrbitKind::Periodic {
         m,
         n: window.entries.iter().rev().take(m as usize).sum(),
     });
-    (kind, residual)
+    let (Some(last), len) = (window.strobe.last(), window.strobe.len()) else {
+        return (detected, residual, None);
+    };
+    let back = |m: u64| distance(last, &window.strobe[len - 1 - m as usize]);
+    let check = match m {
+        Some(m) => (1..m)
+            .any(|d| m.is_multiple_of(d) && back(d) < crate::analysis::shooting::LEAST_PERIOD)
+            .then_some(m),
+        None if residual < SHOOT_BELOW => {
+            (1..=MAX_PERIOD.min(len.saturating_sub(1)) as u64).find(|&m| back(m) == residual)
+        }
+        None => None,
+    };
+    let Some(m) = check else {
+        return (detected, residual, None);
+    };
+    // a few Newton steps: the state is close to the orbit if there is one
+    match crate::analysis::shooting::shoot_within(model, last, m, 8) {
+        Ok(o) if o.stable && distance(&o.state_vector(), last) < SHOOT_BELOW => (
+            OrbitKind::Periodic {
+                m: o.period_m,
+                n: o.impacts_n as u64,
+            },
+            residual,
+            Some(o.state_vector()),
+        ),
+        _ => (detected, residual, None),
+    }
 }
 
 /// An orbit of any model variant after its transient ([`settle_map`]).
@@ -74,7 +130,8 @@ pub struct Settled {
     pub kind: OrbitKind,
     /// The best relative residual of the window's strobe.
     pub residual: f64,
-    /// The state at the end of the window.
+    /// The state at the end of the window; where shooting decided the label
+    /// ([`label_with_orbit`]), the orbit's state at that phase instead.
     pub state: DVector<f64>,
     /// The cycle at which the window ends.
     pub cycle: i64,
@@ -118,11 +175,11 @@ fn window_from<M: PeriodMap + ?Sized>(
     window: u64,
 ) -> Result<Settled, Error> {
     let w = model.advance(x, cycle, window, true)?;
-    let (kind, residual) = label(model, &w);
+    let (kind, residual, orbit) = label_with_orbit(model, &w);
     Ok(Settled {
         kind,
         residual,
-        state: w.state.clone(),
+        state: orbit.unwrap_or_else(|| w.state.clone()),
         cycle: cycle + window as i64,
         window: w,
     })
@@ -164,7 +221,8 @@ pub struct Orbit {
     pub dense: Vec<Sample>,
     /// The window's first cycle.
     pub window_start: i64,
-    /// The state at the end.
+    /// The state at the end; where shooting decided the label ([`label_with_orbit`]), the
+    /// orbit's state at that phase instead, so that what is computed from it is the orbit's.
     pub state: DVector<f64>,
 }
 
@@ -213,14 +271,14 @@ pub fn settle(
         entries,
         ..Periods::default()
     };
-    let (kind, residual) = label(sim, &periods);
+    let (kind, residual, orbit) = label_with_orbit(sim, &periods);
     Ok(Orbit {
         kind,
         residual,
         events: events.events,
         dense: dense.samples,
         window_start: start.cycles,
-        state,
+        state: orbit.unwrap_or(state),
     })
 }
 

@@ -244,6 +244,27 @@ pub(super) fn key_numbers(k: &mut KeyNumbers, d: &Fig5Data) {
             None => k.text(name, "not found"),
         }
     }
+    // N = 2's Figure 4 orbit, (2,4), loses stability by period doubling: where the sweep's
+    // (2,4) must give way to (4,8)
+    let doubling = d
+        .branches
+        .iter()
+        .find(|s| s.modes == 2)
+        .and_then(|s| s.branches.first())
+        .and_then(|b| b.bifurcations.iter().find(|f| f.kind == BifurcationKind::PeriodDoubling));
+    if let Some(f) = doubling {
+        let (lo, hi) = (f.between.0.min(f.between.1), f.between.0.max(f.between.1));
+        k.cited(
+            "N=2 period doubling on the Fig 4 branch",
+            f.parameter,
+            4,
+            Uncertainty::new(
+                (f.parameter - lo).max(hi - f.parameter),
+                format!("between adjacent continuation points {lo:.4} and {hi:.4} k₁ (the multiplier's crossing of −1 interpolated)"),
+            ),
+            "k₁",
+        );
+    }
     let Some(up) = d.branches.iter().find(|s| s.modes == 3).and_then(|s| s.branches.first()) else {
         return;
     };
