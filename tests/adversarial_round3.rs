@@ -416,6 +416,62 @@ fn item_10_special_files_are_written_through_and_links_kept() {
     assert!(!d.join("fresh-out").exists());
 }
 
+/// Item 11, the signal's side: the clean-up a SIGINT or SIGTERM runs
+/// (`remove_temporaries`) never interleaves with a swap in progress. Here it runs over and
+/// over while sets are written: every set written is whole and holds its own version, and
+/// nothing is left beside it. (Run unguarded, the clean-up deletes a new set while it is
+/// renamed into place, or puts an old set back over it.)
+#[test]
+fn item_11_the_signal_clean_up_waits_for_a_swap_in_progress() {
+    use impacting_cantilever::results::files::{remove_temporaries, write_set};
+    use std::sync::atomic::{AtomicBool, Ordering};
+    let d = scratch("swap-and-signal");
+    let out = d.join("fig5");
+    let names = [
+        "data.json",
+        "key_numbers.json",
+        "plot.svg",
+        "table.md",
+        "verdict.json",
+    ];
+    let done = AtomicBool::new(false);
+    // stops the clean-up loop however the writes end (a failed assertion included)
+    struct Stop<'a>(&'a AtomicBool);
+    impl Drop for Stop<'_> {
+        fn drop(&mut self) {
+            self.0.store(true, Ordering::Relaxed);
+        }
+    }
+    std::thread::scope(|s| {
+        s.spawn(|| {
+            while !done.load(Ordering::Relaxed) {
+                remove_temporaries();
+            }
+        });
+        let _stop = Stop(&done);
+        for version in 0..100 {
+            let files: Vec<(String, String)> = names
+                .iter()
+                .map(|n| (n.to_string(), format!("{version} ").repeat(200_000)))
+                .collect();
+            write_set(&out, &files)
+                .unwrap_or_else(|e| panic!("version {version}: the swap failed: {e}"));
+            for n in names {
+                let text = std::fs::read_to_string(out.join(n))
+                    .unwrap_or_else(|e| panic!("version {version}: {n}: {e}"));
+                assert_eq!(text, files[0].1, "version {version}: {n} is not this set's");
+            }
+        }
+    });
+    let left: Vec<_> = std::fs::read_dir(&d)
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".tmp") || n.ends_with(".old"))
+        .collect();
+    assert!(left.is_empty(), "left beside the set: {left:?}");
+}
+
 #[test]
 fn item_11_an_output_set_is_written_whole_even_by_concurrent_writers() {
     let d = scratch("sets");
@@ -785,10 +841,62 @@ fn item_14_errors_come_before_the_work_and_say_the_real_cause() {
     ]);
     assert_eq!(code, 2);
     assert!(err.contains("got 1e300"), "{err}");
+    // an output path ending in / that does not exist names a directory: refused before the
+    // run (it failed with "Not a directory" after the work), and nothing is created
+    let d = scratch("slash");
+    for flag in ["--dense", "--final-state"] {
+        let (code, _, err) = cantilever_in(
+            &d,
+            &[
+                "simulate",
+                "--modes",
+                "3",
+                "--zeta1",
+                "0.01",
+                "--omega",
+                "2",
+                "--periods",
+                "1000000",
+                "--record",
+                "2",
+                flag,
+                "new/",
+            ],
+        );
+        assert_eq!(code, 2, "{flag}: {err}");
+        assert!(err.contains(flag) && err.contains("ends in /"), "{err}");
+    }
+    let (code, _, err) = cantilever_in(&d, &["atlas", "--resolution", "test", "--out", "new/"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(!d.join("new").exists());
+    // one file for two outputs: the second would replace the first
+    let (code, _, err) = cantilever_in(
+        &d,
+        &[
+            "simulate",
+            "--modes",
+            "3",
+            "--zeta1",
+            "0.01",
+            "--omega",
+            "2",
+            "--periods",
+            "1",
+            "--record",
+            "2",
+            "--dense",
+            "same.csv",
+            "--final-state",
+            "./same.csv",
+        ],
+    );
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--final-state"), "{err}");
 }
 
 /// Item 14: a closed standard output (`>&-`) is refused, exit 2, with the reason on stderr;
-/// a stdout sent to /dev/null on purpose is not. (Linux: the check reads /proc.)
+/// a stdout sent to /dev/null on purpose is not, however it was opened. (Linux: the check
+/// reads /proc.)
 #[test]
 #[cfg(target_os = "linux")]
 fn item_14_a_closed_stdout_is_refused_and_dev_null_is_not() {
@@ -805,13 +913,18 @@ fn item_14_a_closed_stdout_is_refused_and_dev_null_is_not() {
     assert_eq!(closed.status.code(), Some(2), "{stderr}");
     assert!(stderr.contains("standard output is closed"), "{stderr}");
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
-    let discarded = run(">/dev/null");
-    assert_eq!(
-        discarded.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&discarded.stderr)
-    );
+    // discarded on purpose: write-only, and read-write as Python's subprocess.DEVNULL
+    // opens it (the runtime's stand-in for a closed fd is read-write too, so the open
+    // mode cannot tell them apart; the state at start-up can)
+    for redirect in [">/dev/null", "1<>/dev/null"] {
+        let discarded = run(redirect);
+        assert_eq!(
+            discarded.status.code(),
+            Some(0),
+            "{redirect}: {}",
+            String::from_utf8_lossy(&discarded.stderr)
+        );
+    }
 }
 
 #[test]

@@ -561,7 +561,10 @@ fn project_function(f: &dyn Fn(f64) -> f64, n: usize) -> Result<DVector<f64>, Pa
 pub fn contact_eigenvalues(d: &[f64], stop_stiffness: f64) -> Vec<f64> {
     let n = d.len();
     let k = stop_stiffness;
-    if k == 0.0 {
+    // every shift λ_i − d_i lies in [0, kN] (they sum to the trace kN); below half an ulp
+    // of d_1 each λ_i rounds to d_i. (Then 1/k may overflow, for subnormal k: the bracket
+    // below would fail.)
+    if k * n as f64 <= 0.25 * f64::EPSILON * d.first().map_or(0.0, |x| x.abs()) || k == 0.0 {
         return d.to_vec();
     }
     (0..n)
@@ -609,6 +612,22 @@ mod tests {
                 assert!((kp[(i, j)] - expected).abs() <= 4.0 * f64::EPSILON * expected);
             }
         }
+    }
+
+    #[test]
+    fn a_vanishing_stop_leaves_the_free_eigenvalues() {
+        // subnormal and tiny k: each λ_i is d_i to the last bit (the shift kN is below half
+        // an ulp), not a root lost to 1/k = ∞
+        let d = [12.36, 485.5, 3806.5];
+        for k in [5e-324, 1e-310, 1e-300, 1e-20] {
+            assert_eq!(contact_eigenvalues(&d, k), d.to_vec(), "k = {k:e}");
+        }
+        // just above: the shift shows in the last bits, and nothing is lost or reordered
+        let l = contact_eigenvalues(&d, 1e-14);
+        assert!(l
+            .iter()
+            .zip(&d)
+            .all(|(a, b)| a >= b && a - b <= 3e-14 + 4.0 * f64::EPSILON * b));
     }
 
     #[test]

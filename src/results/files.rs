@@ -25,6 +25,19 @@ use std::sync::Mutex;
 /// for when it is an old set moved aside (to be put back if the new one is not in place).
 static TEMPORARIES: Mutex<Vec<(PathBuf, Option<PathBuf>)>> = Mutex::new(Vec::new());
 
+/// Held while a temporary is written and renamed into place ([`write_atomically`],
+/// [`swap_in`]) and by [`remove_temporaries`]: a signal that arrives mid-swap waits the
+/// few milliseconds until the swap is complete instead of cleaning up under it (which
+/// could delete the new set as it was renamed in, or leave a folder half emptied). Writes
+/// through a FIFO, which may block on its reader, do not hold it.
+static WRITING: Mutex<()> = Mutex::new(());
+
+fn writing() -> std::sync::MutexGuard<'static, ()> {
+    WRITING
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner())
+}
+
 fn register(path: &Path) {
     register_aside(path, None);
 }
@@ -46,6 +59,7 @@ fn unregister(path: &Path) {
 /// and puts an old output set back where an interrupted swap had moved it aside and the
 /// new set is not yet in place — an interrupted write never loses the old output.
 pub fn remove_temporaries() {
+    let _writing = writing();
     let entries = match TEMPORARIES.lock() {
         Ok(mut t) => std::mem::take(&mut *t),
         Err(_) => return,
@@ -208,6 +222,13 @@ fn human_bytes(n: u64) -> String {
 /// not exist or does not accept a file. `flag` names the option in the error.
 pub fn check_writable(flag: &str, path: &Path) -> Result<(), ParameterError> {
     let bad = |why: String| ParameterError::new(flag, path.display(), &why);
+    // "new/" names a directory: a file cannot be created there (the system would say so
+    // only when the results are written, after the work)
+    if path.as_os_str().to_string_lossy().ends_with('/') && !path.exists() {
+        return Err(bad(
+            "a file path (this one ends in / and names no existing file)".into(),
+        ));
+    }
     match target(path) {
         Target::Refuse(why) => Err(bad(format!("a writable file path (it is {why})"))),
         Target::Through(_) | Target::Descriptor(_) => Ok(()),
@@ -263,6 +284,7 @@ pub fn write_atomically(path: &Path, text: &str) -> Result<(), Error> {
                 .map(|n| n.to_string_lossy().into_owned())
                 .unwrap_or_default();
             let tmp = p.with_file_name(format!(".{name}.{}.tmp", std::process::id()));
+            let _writing = writing();
             register(&tmp);
             let written = std::fs::write(&tmp, text)
                 .and_then(|()| std::fs::rename(&tmp, &p))
@@ -340,6 +362,7 @@ fn swap_in(parent: &Path, name: &str, dir: &Path, files: &[(String, String)]) ->
     let pid = std::process::id();
     let fresh = parent.join(format!(".{name}.{pid}.tmp"));
     let old = parent.join(format!(".{name}.{pid}.old"));
+    let _writing = writing();
     register(&fresh);
     let _ = std::fs::remove_dir_all(&fresh);
     let written = std::fs::create_dir(&fresh)
@@ -444,6 +467,9 @@ mod tests {
         assert!(check_writable("--dense", &d).is_err());
         assert!(check_writable("--dense", &d.join("missing/x.csv")).is_err());
         assert!(check_writable("--dense", &d.join("fresh.csv")).is_ok());
+        // a new path ending in / names a directory, not a file
+        let slashed = PathBuf::from(format!("{}/", d.join("new").display()));
+        assert!(check_writable("--dense", &slashed).is_err());
     }
 
     #[test]

@@ -253,9 +253,28 @@ impl Observer for Events {
 pub struct Strobe {
     /// (cycle, state) pairs.
     pub samples: Vec<(i64, DVector<f64>)>,
+    /// Keep only the last this many (0: all): a period search over m ≤ M needs M + 1, and
+    /// a long window then costs no memory for the rest.
+    pub keep_last: usize,
 }
 
 impl Strobe {
+    /// A strobe that keeps only its last `n` samples (all if `n` is 0).
+    pub fn keeping_last(n: usize) -> Self {
+        Self {
+            samples: Vec::new(),
+            keep_last: n,
+        }
+    }
+
+    fn push(&mut self, cycle: i64, x: &DVector<f64>) {
+        if self.keep_last > 0 && self.samples.len() >= self.keep_last {
+            let excess = self.samples.len() + 1 - self.keep_last;
+            self.samples.drain(..excess);
+        }
+        self.samples.push((cycle, x.clone()));
+    }
+
     /// The states alone.
     pub fn states(&self) -> Vec<DVector<f64>> {
         self.samples.iter().map(|(_, x)| x.clone()).collect()
@@ -267,10 +286,10 @@ impl Observer for Strobe {
         true
     }
     fn begin(&mut self, _: &Simulator, clock: &Clock, x: &DVector<f64>) {
-        self.samples.push((clock.cycles, x.clone()));
+        self.push(clock.cycles, x);
     }
     fn period_boundary(&mut self, clock: &Clock, x: &DVector<f64>) {
-        self.samples.push((clock.cycles, x.clone()));
+        self.push(clock.cycles, x);
     }
 }
 

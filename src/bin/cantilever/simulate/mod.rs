@@ -40,6 +40,12 @@ pub const ZETA1_RANGE: (f64, f64) = (1e-8, 1e3);
 /// lowest mode and the stop mode must be resolved throughout; above 1e4 the forced
 /// response (∝ ω⁻²) falls below 1e-8 of the resonant one and the phase ωt loses digits.
 pub const OMEGA_RANGE: (f64, f64) = (1e-3, 1e4);
+/// The longest period the window is searched for: `--max-period`, and at most half the
+/// recorded periods (a period must be seen twice).
+pub fn period_search_depth(args: &SimulateArgs) -> usize {
+    args.max_period.min(args.record as usize / 2)
+}
+
 /// Supported k/k₁ (compliant model): beyond 1e12 the contact basis loses more than
 /// 8 digits (its condition grows like √k).
 pub const MAX_STIFFNESS: f64 = 1e12;

@@ -129,6 +129,33 @@ pub fn check_writable(args: &SimulateArgs) -> Result<(), ParameterError> {
             impacting_cantilever::results::files::check_writable(flag, path)?;
         }
     }
+    // one file for both outputs: the second would silently replace the first (a character
+    // device such as /dev/null can take both)
+    if let (Some(a), Some(b)) = (&args.final_state, &args.dense) {
+        // a path that does not exist yet: its folder's real path and its name
+        let real = |p: &std::path::Path| {
+            std::fs::canonicalize(p).ok().or_else(|| {
+                let dir = p.parent().filter(|d| !d.as_os_str().is_empty());
+                let dir = std::fs::canonicalize(dir.unwrap_or(std::path::Path::new("."))).ok()?;
+                Some(dir.join(p.file_name()?))
+            })
+        };
+        let same = match (real(a), real(b)) {
+            (Some(x), Some(y)) => x == y,
+            _ => a == b,
+        };
+        let device = std::fs::metadata(a).is_ok_and(|m| {
+            use std::os::unix::fs::FileTypeExt;
+            m.file_type().is_char_device()
+        });
+        if same && !device {
+            return Err(ParameterError::new(
+                "--dense",
+                b.display(),
+                "a file other than --final-state's (one would overwrite the other)",
+            ));
+        }
+    }
     Ok(())
 }
 

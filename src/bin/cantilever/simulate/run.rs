@@ -10,7 +10,7 @@ use impacting_cantilever::engine::sim::{
     Clock, Energy, EnergyBudget, EventView, Observer, SegmentView, Simulator, Strobe, TipMax,
     TipMaximum,
 };
-use impacting_cantilever::error::Error;
+use impacting_cantilever::error::{Error, ParameterError};
 use impacting_cantilever::model::galerkin::Region;
 use impacting_cantilever::results::scene::Progress;
 use nalgebra::DVector;
@@ -139,13 +139,43 @@ impl Observer for ModalDense {
     }
 }
 
+/// The most numbers the recorded events may hold (each event: its N modal velocities and
+/// six more), as for `--dense`: ~250 MB of JSON. A window with more is refused when it
+/// ends (how many events a window has is not known before it is run), without the memory.
+const MAX_EVENT_NUMBERS: usize = 10_000_000;
+
 /// Events with the modal velocities.
 #[derive(Default)]
-struct EventLog(Vec<EventOut>);
+struct EventLog(Vec<EventOut>, usize, bool);
+
+impl EventLog {
+    /// The refusal when the window's events did not fit.
+    fn check(&self, args: &SimulateArgs) -> Result<(), Error> {
+        if !self.2 {
+            return Ok(());
+        }
+        Err(Error::Parameter(ParameterError::new(
+            "--record",
+            args.record,
+            &format!(
+                "a window whose events fit in {MAX_EVENT_NUMBERS} numbers (~250 MB as JSON); \
+                 this one had more than {} events at N = {}: fewer recorded periods, or the \
+                 window in pieces (--final-state, then --initial-state)",
+                self.0.len(),
+                args.modes
+            ),
+        )))
+    }
+}
 
 impl Observer for EventLog {
     fn event(&mut self, e: &EventView) {
         let n = e.state.len() / 2;
+        self.1 += n + 6;
+        if self.1 > MAX_EVENT_NUMBERS {
+            self.2 = true;
+            return;
+        }
         self.0.push(EventOut {
             time: e.clock.time(),
             cycle: e.clock.cycles,
@@ -180,7 +210,7 @@ fn period_search(
     args: &SimulateArgs,
     strobe: &[DVector<f64>],
 ) -> (Option<u64>, Option<f64>, usize) {
-    let max_m = args.max_period.min(args.record as usize / 2);
+    let max_m = super::period_search_depth(args);
     if strobe.len() < 2 || max_m == 0 {
         return (None, None, max_m);
     }
@@ -217,7 +247,9 @@ fn compliant(args: &SimulateArgs, setup: Setup, bars: &Bars) -> Result<Report, E
         per_period: args.dense_per_period,
         rows: Vec::new(),
     };
-    let (mut energy, mut strobe) = (budgeted(), Strobe::default());
+    // the period search looks back at most max_m periods from the last
+    let keep = super::period_search_depth(args) + 1;
+    let (mut energy, mut strobe) = (budgeted(), Strobe::keeping_last(keep));
     let end = if args.dense.is_some() {
         sim.run_from(
             &x,
@@ -249,6 +281,7 @@ fn compliant(args: &SimulateArgs, setup: Setup, bars: &Bars) -> Result<Report, E
         add(&e.budget);
     }
     segments += end.stats.segments;
+    log.check(args)?;
     let strobe_states = strobe.states();
     (x, clock) = (end.state, end.clock);
     drop(task);
@@ -394,6 +427,12 @@ fn rigid(args: &SimulateArgs, setup: Setup, bars: &Bars) -> Result<Report, Error
                 }
                 _ => None,
             }));
+            // each impact holds 2N modal velocities and six more numbers
+            let numbers = events.len() * (2 * args.modes + 6);
+            if numbers > MAX_EVENT_NUMBERS {
+                let full = EventLog(std::mem::take(&mut events), numbers, true);
+                full.check(args)?;
+            }
         }
         outcome = r.outcome;
         x = r.state;
@@ -403,6 +442,11 @@ fn rigid(args: &SimulateArgs, setup: Setup, bars: &Bars) -> Result<Report, Error
             done += step;
             if recording {
                 strobe_states.push(x.clone());
+                // the period search needs only the last max_m + 1
+                let keep = super::period_search_depth(args) + 1;
+                if strobe_states.len() > keep {
+                    strobe_states.remove(0);
+                }
             }
         }
         task.advance(step);
