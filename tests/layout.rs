@@ -91,3 +91,42 @@ fn every_path_in_the_readme_layout_exists() {
         );
     }
 }
+
+/// The toolchain the README and the book ask for is the one Cargo.toml declares
+/// (`rust-version`): every "(X or newer)" next to "Rust toolchain" says X.
+#[test]
+fn every_stated_rust_version_is_the_manifests() {
+    let manifest = std::fs::read_to_string("Cargo.toml").unwrap();
+    let declared = manifest
+        .lines()
+        .find_map(|l| l.strip_prefix("rust-version = "))
+        .expect("rust-version in Cargo.toml")
+        .trim_matches('"')
+        .to_string();
+    let mut files = vec![std::path::PathBuf::from("README.md")];
+    for e in std::fs::read_dir("book/src").unwrap() {
+        let p = e.unwrap().path();
+        if p.extension().is_some_and(|x| x == "md") {
+            files.push(p);
+        }
+    }
+    let mut seen = 0;
+    for f in files {
+        let text = std::fs::read_to_string(&f).unwrap();
+        for (i, _) in text.match_indices("Rust toolchain (") {
+            let rest = &text[i + "Rust toolchain (".len()..];
+            let version = rest.split_whitespace().next().unwrap_or("");
+            assert_eq!(
+                version,
+                declared,
+                "{}: Rust toolchain ({version} …)",
+                f.display()
+            );
+            seen += 1;
+        }
+    }
+    assert!(
+        seen >= 3,
+        "the README and the book state the toolchain ({seen} found)"
+    );
+}

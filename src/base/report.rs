@@ -144,6 +144,15 @@ pub fn round_up_one_figure(u: f64) -> f64 {
     format_sig(m * scale, 1).parse().unwrap_or(u)
 }
 
+/// An integer as superscript characters: -12 → "⁻¹²" (for 10ⁿ in prose and on plot axes).
+pub fn superscript(n: i32) -> String {
+    const DIGITS: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
+    n.to_string()
+        .chars()
+        .map(|c| c.to_digit(10).map_or('⁻', |d| DIGITS[d as usize]))
+        .collect()
+}
+
 /// x to `digits` significant figures for prose: plain for moderate magnitudes, a × 10ⁿ
 /// beyond.
 pub fn pretty(x: f64, digits: usize) -> String {
@@ -160,23 +169,7 @@ pub fn pretty(x: f64, digits: usize) -> String {
     let x = round_sig(x, digits.max(1));
     let e = x.abs().log10().floor() as i32;
     let mantissa = x / 10f64.powi(e);
-    let superscript: String = e
-        .to_string()
-        .chars()
-        .map(|c| match c {
-            '-' => '⁻',
-            '0' => '⁰',
-            '1' => '¹',
-            '2' => '²',
-            '3' => '³',
-            '4' => '⁴',
-            '5' => '⁵',
-            '6' => '⁶',
-            '7' => '⁷',
-            '8' => '⁸',
-            _ => '⁹',
-        })
-        .collect();
+    let superscript = superscript(e);
     if digits <= 1 && (mantissa - 1.0).abs() < 1e-12 {
         format!("10{superscript}")
     } else {

@@ -2,6 +2,7 @@
 //! which writes text as SVG `<text>` and so needs no system fonts) and markdown tables.
 //! No numerics here.
 
+use crate::base::report::superscript;
 use plotters::chart::MeshStyle;
 use plotters::coord::ranged1d::{Ranged, ValueFormatter};
 use plotters::element::DashedPathElement;
@@ -25,19 +26,42 @@ pub const AXIS_FONT: (&str, u32) = ("sans-serif", 20);
 /// Panel titles.
 pub const CAPTION_FONT: (&str, u32) = ("sans-serif", 22);
 
-/// The mesh of `chart` with the book's label sizes; add descriptions and formatters, then
-/// `.draw()`.
-pub fn styled_mesh<'a, 'b, DB, X, Y, XT, YT>(
+/// The mesh of `chart` with the book's label sizes, tick labels without trailing zeros
+/// and with a minus sign ([`tick`]), and a light grid of at most four minor lines per major
+/// interval; add descriptions and other formatters, then `.draw()`.
+pub fn styled_mesh<'a, 'b, DB, X, Y>(
     chart: &'b mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
 ) -> MeshStyle<'a, 'b, X, Y, DB>
 where
     DB: DrawingBackend + 'a,
-    X: Ranged<ValueType = XT> + ValueFormatter<XT>,
-    Y: Ranged<ValueType = YT> + ValueFormatter<YT>,
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
 {
     let mut m = chart.configure_mesh();
-    m.label_style(LABEL_FONT).axis_desc_style(AXIS_FONT);
+    m.label_style(LABEL_FONT)
+        .axis_desc_style(AXIS_FONT)
+        .x_label_formatter(&tick)
+        .y_label_formatter(&tick)
+        .x_max_light_lines(4)
+        .y_max_light_lines(4);
     m
+}
+
+/// A tick label on a linear axis: the value to ten significant figures without trailing
+/// zeros (15, 0.35), with a minus sign for negative values; a value within round-off of
+/// zero is 0.
+pub fn tick(x: &f64) -> String {
+    if x.abs() < 1e-12 || !x.is_finite() {
+        return "0".into();
+    }
+    let digits = (9 - x.abs().log10().floor() as i32).max(0) as usize;
+    let s = format!("{x:.digits$}");
+    let s = if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    };
+    s.replace('-', "−")
 }
 
 /// Draws the mesh of a log–log `chart` with the book's label sizes, the given axis
@@ -55,8 +79,8 @@ where
     styled_mesh(chart)
         .x_desc(x_desc)
         .y_desc(y_desc)
-        .x_label_formatter(&|x| format!("{x:.0e}"))
-        .y_label_formatter(&|y| format!("{y:.0e}"))
+        .x_label_formatter(&power_of_ten)
+        .y_label_formatter(&power_of_ten)
         .draw()
         .map_err(drawing)
 }
@@ -76,11 +100,159 @@ pub fn omega_log_k_mesh<'a, DB: DrawingBackend + 'a>(
         .disable_mesh()
         .x_desc("ω / (β₁⁻)²")
         .y_desc("k / k₁")
-        .y_label_formatter(&|l| format!("1e{l:.0}"))
+        .y_label_formatter(&|l| power_of_ten(&10f64.powf(l.round())))
         .y_labels(((l1 - l0) as usize + 1).max(2))
         .x_labels(x_labels)
         .draw()
         .map_err(drawing)
+}
+
+/// The number in e-notation that starts at `chars[i]` (`1.778e3`, `1e-12`), as the book
+/// prints numbers elsewhere (`1.778 × 10³`, `10⁻¹²`), and how many chars it spans; `None`
+/// where `chars[i]` does not start one. A number starts after a character that is not
+/// alphanumeric, `.` or `_`, has at most three exponent digits and is not followed by a
+/// letter, a digit or a decimal point — except the unit k₁, written without a space.
+fn e_notation_at(chars: &[char], i: usize) -> Option<(String, usize)> {
+    if i > 0 && (chars[i - 1].is_alphanumeric() || matches!(chars[i - 1], '.' | '_')) {
+        return None;
+    }
+    let digits = |from: usize| {
+        chars[from..]
+            .iter()
+            .take_while(|c| c.is_ascii_digit())
+            .count()
+    };
+    let mut j = i + digits(i);
+    if j == i {
+        return None;
+    }
+    if chars.get(j) == Some(&'.') && digits(j + 1) > 0 {
+        j += 1 + digits(j + 1);
+    }
+    let mantissa: String = chars[i..j].iter().collect();
+    if !matches!(chars.get(j), Some('e' | 'E')) {
+        return None;
+    }
+    j += 1;
+    let negative = matches!(chars.get(j), Some('-' | '−'));
+    if matches!(chars.get(j), Some('-' | '−' | '+')) {
+        j += 1;
+    }
+    let n = digits(j);
+    let after = chars.get(j + n);
+    let unit_k1 = after == Some(&'k') && chars.get(j + n + 1) == Some(&'₁');
+    // a full stop ends a sentence; a point followed by a digit continues a number
+    let continues = after.is_some_and(|c| c.is_alphanumeric())
+        || (after == Some(&'.') && chars.get(j + n + 1).is_some_and(|c| c.is_ascii_digit()));
+    if n == 0 || n > 3 || (continues && !unit_k1) {
+        return None;
+    }
+    let exponent: String = chars[j..j + n].iter().collect();
+    let exponent = exponent.trim_start_matches('0');
+    if exponent.is_empty() {
+        return Some((mantissa, j + n - i));
+    }
+    let sup = superscript(exponent.parse::<i32>().unwrap_or(0) * if negative { -1 } else { 1 });
+    let unit = if unit_k1 { " " } else { "" };
+    Some(if mantissa == "1" {
+        (format!("10{sup}{unit}"), j + n - i)
+    } else {
+        (format!("{mantissa} × 10{sup}{unit}"), j + n - i)
+    })
+}
+
+/// Numbers in text as the book prints them: e-notation as powers of ten
+/// ([`e_notation_at`]) and a minus sign (−, not a hyphen) before a negative number. Code
+/// (`…`) and TeX (`$…$`) are left alone.
+pub fn readable_numbers(text: &str) -> String {
+    let chars: Vec<char> = text.chars().collect();
+    let mut out = String::with_capacity(text.len() + 16);
+    let mut in_code = false;
+    let mut i = 0;
+    while i < chars.len() {
+        let c = chars[i];
+        if c == '`' || c == '$' {
+            in_code = !in_code;
+        }
+        if !in_code {
+            if let Some((power, span)) = e_notation_at(&chars, i) {
+                out.push_str(&power);
+                i += span;
+                continue;
+            }
+            // a hyphen that starts a number (after a space, a bracket or a sign of relation)
+            let starts =
+                i == 0 || matches!(chars[i - 1], ' ' | '(' | '[' | '=' | ',' | '/' | '≈' | '~');
+            if c == '-' && starts && chars.get(i + 1).is_some_and(|d| d.is_ascii_digit()) {
+                out.push('−');
+                i += 1;
+                continue;
+            }
+        }
+        out.push(c);
+        i += 1;
+    }
+    out
+}
+
+/// Text for a page or a table with the paper's subscripts as HTML: `r_E`, `A_free`, `β_N`, `[R]_N`
+/// and `ωA_free` would show their underscores. A subscript is a single-letter symbol (or
+/// `]`) followed by `_` and letters or digits; identifiers such as `impact_velocity_1` and
+/// anything inside backticks are left alone. Numbers are written as elsewhere in the book
+/// ([`readable_numbers`]).
+pub fn readable_text(text: &str) -> String {
+    let text = readable_numbers(text);
+    let chars: Vec<char> = text.chars().collect();
+    let mut out = String::with_capacity(text.len() + 16);
+    let mut in_code = false;
+    let mut i = 0;
+    while i < chars.len() {
+        let c = chars[i];
+        // code and TeX (`$…$`, converted later to MathML) keep their underscores
+        if c == '`' || c == '$' {
+            in_code = !in_code;
+        }
+        let symbol = c.is_alphabetic() || c == ']';
+        // the symbol stands alone: nothing alphanumeric before it, except ω in ωA_free
+        let alone = c == ']' || i == 0 || !chars[i - 1].is_alphanumeric() || chars[i - 1] == 'ω';
+        let run = chars[(i + 2).min(chars.len())..]
+            .iter()
+            .take_while(|ch| ch.is_ascii_alphanumeric())
+            .count();
+        if !in_code && symbol && alone && chars.get(i + 1) == Some(&'_') && run > 0 {
+            let sub: String = chars[i + 2..i + 2 + run].iter().collect();
+            out.push(c);
+            out.push_str(&format!("<sub>{sub}</sub>"));
+            i += 2 + run;
+            continue;
+        }
+        out.push(c);
+        i += 1;
+    }
+    out
+}
+
+/// A tick label on a logarithmic axis: a power of ten as 10ⁿ (1 and 10 as themselves),
+/// another value as m×10ⁿ to one figure.
+pub fn power_of_ten(x: &f64) -> String {
+    if !(x.is_finite() && *x > 0.0) {
+        return format!("{x}");
+    }
+    let e = x.log10().round() as i32;
+    let m = x / 10f64.powi(e);
+    match e {
+        _ if (m - 1.0).abs() > 1e-6 => {
+            let e = x.log10().floor() as i32;
+            format!(
+                "{:.0}×10{}",
+                x / 10f64.powi(e),
+                crate::base::report::superscript(e)
+            )
+        }
+        0 => "1".into(),
+        1 => "10".into(),
+        _ => format!("10{}", crate::base::report::superscript(e)),
+    }
 }
 
 /// A legend entry for a solid line of `style`.
@@ -112,6 +284,102 @@ where
         .border_style(BLACK)
         .draw()
         .map_err(drawing)
+}
+
+/// The parts of a polyline inside the band lo ≤ y ≤ hi, cut where it leaves and re-enters
+/// the band (plotters would instead press the points outside onto the plot's edge, which
+/// draws a flat line that is not in the data).
+pub fn clip_to_band(line: &[(f64, f64)], (lo, hi): (f64, f64)) -> Vec<Vec<(f64, f64)>> {
+    let inside = |p: &(f64, f64)| p.1 >= lo && p.1 <= hi;
+    // the point where the segment a → b meets the level y
+    let cut = |a: (f64, f64), b: (f64, f64), y: f64| {
+        let t = (y - a.1) / (b.1 - a.1);
+        (a.0 + t * (b.0 - a.0), y)
+    };
+    let mut parts: Vec<Vec<(f64, f64)>> = Vec::new();
+    let mut current: Vec<(f64, f64)> = Vec::new();
+    for (i, &p) in line.iter().enumerate() {
+        let prev = i.checked_sub(1).map(|j| line[j]);
+        match (prev, inside(&p)) {
+            (_, true) if !current.is_empty() => current.push(p),
+            (Some(a), true) => {
+                // entering the band from beyond one of its edges
+                current.push(cut(a, p, if a.1 < lo { lo } else { hi }));
+                current.push(p);
+            }
+            (None, true) => current.push(p),
+            (Some(a), false) if inside(&a) => {
+                current.push(cut(a, p, if p.1 < lo { lo } else { hi }));
+                parts.push(std::mem::take(&mut current));
+            }
+            (Some(a), false) if (a.1 < lo) != (p.1 < lo) => {
+                // crossing the whole band between two points
+                let (y0, y1) = if a.1 < lo { (lo, hi) } else { (hi, lo) };
+                parts.push(vec![cut(a, p, y0), cut(a, p, y1)]);
+            }
+            _ => {}
+        }
+    }
+    if !current.is_empty() {
+        parts.push(current);
+    }
+    parts
+}
+
+/// A value's position along an axis from `lo` to `hi` as a fraction (0 at `lo`, 1 at
+/// `hi`), on a logarithmic axis if `log`.
+pub fn axis_fraction(v: f64, (lo, hi): (f64, f64), log: bool) -> f64 {
+    if log {
+        (v.ln() - lo.ln()) / (hi.ln() - lo.ln())
+    } else {
+        (v - lo) / (hi - lo)
+    }
+}
+
+/// The corner of a plot where a legend box of `size` (width, height as fractions of the
+/// plot) covers least of the data: `curves` in plot fractions ([`axis_fraction`]), each in
+/// drawing order, so that a line crossing the box between two of its points counts too.
+/// Ties go to the first of upper right, upper left, lower right, lower left. Returns the
+/// corner and how many segments (or lone points) its box still covers.
+pub fn emptiest_corner(
+    curves: &[Vec<(f64, f64)>],
+    (w, h): (f64, f64),
+) -> (SeriesLabelPosition, usize) {
+    use SeriesLabelPosition::*;
+    let corners = [
+        (UpperRight, (1.0 - w, 1.0), (1.0 - h, 1.0)),
+        (UpperLeft, (0.0, w), (1.0 - h, 1.0)),
+        (LowerRight, (1.0 - w, 1.0), (0.0, h)),
+        (LowerLeft, (0.0, w), (0.0, h)),
+    ];
+    let covered = |(x0, x1): (f64, f64), (y0, y1): (f64, f64)| {
+        let inside = |(x, y): (f64, f64)| x >= x0 && x <= x1 && y >= y0 && y <= y1;
+        curves
+            .iter()
+            .map(|c| {
+                let single = c.len() == 1 && inside(c[0]);
+                let along = c.windows(2).filter(|p| {
+                    // sampled finely enough that a segment cannot cross the box unseen
+                    (0..=32).any(|k| {
+                        let t = k as f64 / 32.0;
+                        inside((
+                            p[0].0 + t * (p[1].0 - p[0].0),
+                            p[0].1 + t * (p[1].1 - p[0].1),
+                        ))
+                    })
+                });
+                along.count() + usize::from(single)
+            })
+            .sum::<usize>()
+    };
+    let mut best = (UpperRight, usize::MAX);
+    for (corner, xs, ys) in corners {
+        let n = covered(xs, ys);
+        if n < best.1 {
+            best = (corner, n);
+        }
+    }
+    best
 }
 
 /// Viridis (van der Walt & Smith) at r ∈ [0, 1], linear between five of its stops: a
@@ -154,14 +422,14 @@ pub fn palette(i: usize) -> RGBColor {
 /// A markdown table from a header and rows of cells: the first column left-aligned, the
 /// rest right-aligned.
 pub fn markdown_table(header: &[&str], rows: &[Vec<String>]) -> String {
-    let mut s = format!("| {} |\n|", header.join(" | "));
+    let mut s = format!("| {} |\n|", readable_text(&header.join(" | ")));
     // the first column names the row (left); the others hold numbers (right)
     for i in 0..header.len() {
         s.push_str(if i == 0 { ":---|" } else { "---:|" });
     }
     s.push('\n');
     for r in rows {
-        s.push_str(&format!("| {} |\n", r.join(" | ")));
+        s.push_str(&format!("| {} |\n", readable_text(&r.join(" | "))));
     }
     s
 }
@@ -178,5 +446,106 @@ pub fn cell(x: f64, digits: usize) -> String {
         format!("{x:.decimals$}")
     } else {
         crate::base::report::format_sig(x, digits)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn e_notation_becomes_powers_of_ten_and_identifiers_stay() {
+        assert_eq!(readable_numbers("below 1e-12."), "below 10⁻¹².");
+        assert_eq!(readable_numbers("k = 1.778e3k₁)"), "k = 1.778 × 10³ k₁)");
+        assert_eq!(readable_numbers("to 3.6e-16;"), "to 3.6 × 10⁻¹⁶;");
+        assert_eq!(readable_numbers("(1e2 times"), "(10² times");
+        assert_eq!(readable_numbers("is 1.2e-5 at"), "is 1.2 × 10⁻⁵ at");
+        assert_eq!(readable_numbers("ε = 1e0"), "ε = 1");
+        assert_eq!(readable_numbers("rtol 1e+06"), "rtol 10⁶");
+        // not numbers in e-notation: identifiers, hashes, code, versions, ranges
+        assert_eq!(readable_numbers("commit 5e31a2c"), "commit 5e31a2c");
+        assert_eq!(readable_numbers("x1e3 a1e-3"), "x1e3 a1e-3");
+        assert_eq!(readable_numbers("`1e-3` $1e3$"), "`1e-3` $1e3$");
+        assert_eq!(readable_numbers("v1.2e3"), "v1.2e3");
+        assert_eq!(readable_numbers("3e4f 2e12345"), "3e4f 2e12345");
+        assert_eq!(readable_numbers("1e"), "1e");
+        // a minus sign for negative numbers, not for hyphens, ranges or flags
+        assert_eq!(
+            readable_numbers("slope -0.51 (-2) x=-3"),
+            "slope −0.51 (−2) x=−3"
+        );
+        assert_eq!(
+            readable_numbers("2026-11-25, N=1-3, --out, a-1"),
+            "2026-11-25, N=1-3, --out, a-1"
+        );
+    }
+
+    #[test]
+    fn ticks_read_as_written_by_hand() {
+        assert_eq!(tick(&15.0), "15");
+        assert_eq!(tick(&0.35), "0.35");
+        assert_eq!(tick(&(0.1 + 0.2)), "0.3");
+        assert_eq!(tick(&-4.0), "−4");
+        assert_eq!(tick(&-1e-17), "0");
+        assert_eq!(tick(&250.0), "250");
+        assert_eq!(tick(&1.5e-5), "0.000015");
+    }
+
+    #[test]
+    fn powers_of_ten_read_as_powers() {
+        assert_eq!(power_of_ten(&1e-3), "10⁻³");
+        assert_eq!(power_of_ten(&1.0), "1");
+        assert_eq!(power_of_ten(&10.0), "10");
+        assert_eq!(power_of_ten(&1e12), "10¹²");
+        assert_eq!(power_of_ten(&2e-3), "2×10⁻³");
+        assert_eq!(power_of_ten(&0.0), "0");
+    }
+
+    #[test]
+    fn a_line_is_cut_where_it_leaves_the_band() {
+        let line = [(0.0, -2.0), (1.0, 0.0), (2.0, 0.5), (3.0, 2.0), (4.0, -2.0)];
+        let parts = clip_to_band(&line, (-1.0, 1.0));
+        assert_eq!(
+            parts,
+            vec![
+                vec![(0.5, -1.0), (1.0, 0.0), (2.0, 0.5), (2.0 + 1.0 / 3.0, 1.0)],
+                vec![(3.25, 1.0), (3.75, -1.0)],
+            ]
+        );
+        assert!(clip_to_band(&[(0.0, 5.0), (1.0, 6.0)], (-1.0, 1.0)).is_empty());
+    }
+
+    #[test]
+    fn the_legend_goes_where_the_data_are_not() {
+        // a rising line from lower left to upper right: the upper-left corner is empty
+        let rising = vec![(0.0, 0.0), (1.0, 1.0)];
+        assert_eq!(
+            emptiest_corner(&[rising], (0.4, 0.25)),
+            (SeriesLabelPosition::UpperLeft, 0)
+        );
+        // a line crossing the upper right box between two distant points counts there
+        let across = vec![(0.5, 0.9), (1.0, 0.9)];
+        let falling = vec![(0.0, 1.0), (1.0, 0.0)];
+        assert_eq!(
+            emptiest_corner(&[across, falling], (0.4, 0.25)),
+            (SeriesLabelPosition::LowerLeft, 0)
+        );
+        // every corner taken: the least covered
+        let border = vec![
+            (0.0, 0.05),
+            (1.0, 0.05),
+            (1.0, 0.95),
+            (0.0, 0.95),
+            (0.0, 0.5),
+        ];
+        assert_eq!(
+            emptiest_corner(&[border], (0.4, 0.25)),
+            (SeriesLabelPosition::LowerLeft, 1)
+        );
+        // a single point is data too
+        assert_eq!(
+            emptiest_corner(&[vec![(0.9, 0.9)]], (0.4, 0.25)),
+            (SeriesLabelPosition::UpperLeft, 0)
+        );
     }
 }

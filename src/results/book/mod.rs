@@ -340,8 +340,14 @@ pub fn summary_table(scenes: &[&dyn Entry], outputs: &[SceneNumbers]) -> String 
     s
 }
 
-/// "partly reproduced" → "Partly reproduced".
+/// "partly reproduced" → "Partly reproduced"; a sentence that starts with a symbol (r_E,
+/// k/k₁, ω, d₀) keeps it as it is: a symbol is a single letter other than the word "a".
 pub(crate) fn capitalised(s: &str) -> String {
+    let word: String = s.chars().take_while(|c| c.is_alphabetic()).collect();
+    let after = s[word.len()..].chars().next();
+    if word.chars().count() < 2 && !(word == "a" && after == Some(' ')) {
+        return s.to_string();
+    }
     let mut c = s.chars();
     c.next()
         .map(|f| f.to_uppercase().chain(c).collect())
@@ -357,40 +363,7 @@ fn human_size(bytes: u64) -> String {
     }
 }
 
-/// Text for a page with the paper's subscripts as HTML: `r_E`, `A_free`, `β_N`, `[R]_N`
-/// and `ωA_free` would show their underscores. A subscript is a single-letter symbol (or
-/// `]`) followed by `_` and letters or digits; identifiers such as `impact_velocity_1` and
-/// anything inside backticks are left alone.
-pub fn for_html(text: &str) -> String {
-    let chars: Vec<char> = text.chars().collect();
-    let mut out = String::with_capacity(text.len() + 16);
-    let mut in_code = false;
-    let mut i = 0;
-    while i < chars.len() {
-        let c = chars[i];
-        // code and TeX (`$…$`, converted later to MathML) keep their underscores
-        if c == '`' || c == '$' {
-            in_code = !in_code;
-        }
-        let symbol = c.is_alphabetic() || c == ']';
-        // the symbol stands alone: nothing alphanumeric before it, except ω in ωA_free
-        let alone = c == ']' || i == 0 || !chars[i - 1].is_alphanumeric() || chars[i - 1] == 'ω';
-        let run = chars[(i + 2).min(chars.len())..]
-            .iter()
-            .take_while(|ch| ch.is_ascii_alphanumeric())
-            .count();
-        if !in_code && symbol && alone && chars.get(i + 1) == Some(&'_') && run > 0 {
-            let sub: String = chars[i + 2..i + 2 + run].iter().collect();
-            out.push(c);
-            out.push_str(&format!("<sub>{sub}</sub>"));
-            i += 2 + run;
-            continue;
-        }
-        out.push(c);
-        i += 1;
-    }
-    out
-}
+pub use crate::results::render::readable_text as for_html;
 
 /// How to cite the software that built this book, and the paper (plain text and BibTeX).
 pub fn citation(provenance: &Provenance) -> String {
@@ -421,6 +394,18 @@ fn copy_dir(from: &Path, to: &Path) -> Result<()> {
 #[cfg(test)]
 mod html_tests {
     use super::for_html;
+
+    #[test]
+    fn sentences_are_capitalised_and_symbols_are_not() {
+        use super::capitalised;
+        assert_eq!(capitalised("partly reproduced"), "Partly reproduced");
+        assert_eq!(capitalised("a (1,1) orbit"), "A (1,1) orbit");
+        assert_eq!(capitalised("r<sub>E</sub> ranges"), "r<sub>E</sub> ranges");
+        assert_eq!(capitalised("k/k₁ = 1459–1931"), "k/k₁ = 1459–1931");
+        assert_eq!(capitalised("ω = 2"), "ω = 2");
+        assert_eq!(capitalised("d₀ = 0"), "d₀ = 0");
+        assert_eq!(capitalised(""), "");
+    }
 
     #[test]
     fn subscripts_become_html_and_identifiers_stay() {

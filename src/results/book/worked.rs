@@ -67,7 +67,14 @@ fn bare(v: &Option<KeyValue>) -> String {
         Some(KeyValue::Float(c)) if c.uncertainty.value > 0.0 => format!(
             "{} {}",
             glued(pretty(c.value, c.digits)),
-            glued(format!("± {}", pretty(c.uncertainty.value, 1)))
+            // rounded up to one figure, as everywhere else a ± is printed
+            glued(format!(
+                "± {}",
+                pretty(
+                    crate::base::report::round_up_one_figure(c.uncertainty.value),
+                    1
+                )
+            ))
         ),
         Some(KeyValue::Float(c)) => glued(pretty(c.value, c.digits)),
         other => shown(other),
@@ -201,7 +208,11 @@ fn timings(scene_seconds: &[(String, f64)]) -> String {
         .map(|(name, secs)| {
             vec![
                 format!("`cargo test --release --test published -- {name}`"),
-                format!("{secs:.1} s"),
+                if *secs < 0.05 {
+                    "< 0.1 s".to_string()
+                } else {
+                    format!("{secs:.1} s")
+                },
             ]
         })
         .collect();

@@ -4,6 +4,8 @@
 
 use super::ExperimentData;
 use crate::results::render::{
+    axis_fraction, emptiest_corner,
+    power_of_ten,
     draw_legend, drawing, markdown_table, solid_key, styled_mesh, RenderError, CAPTION_FONT,
     LABEL_FONT, WIDTH,
 };
@@ -72,7 +74,17 @@ pub fn plot(d: &ExperimentData) -> Result<String, RenderError> {
                 )))
                 .map_err(drawing)?;
         }
-        draw_legend(&mut chart, SeriesLabelPosition::LowerRight)?;
+        // the legend where neither the curve nor the scale bars with their labels are
+        let (xs, ys) = ((c0, c1), (lo - pad, hi + 4.0 * pad));
+        let at = |x: f64, y: f64| (axis_fraction(x, xs, false), axis_fraction(y, ys, false));
+        let mut curves = vec![inside.iter().map(|s| at(s.0, s.1)).collect::<Vec<_>>()];
+        for (j, t) in d.mode_periods_ms.iter().enumerate().take(4).skip(1) {
+            let y = hi + pad * (1.0 + 0.9 * (j - 1) as f64);
+            let x = c0 + 0.02 * (c1 - c0);
+            // the label runs about a quarter of the width past the bar
+            curves.push(vec![at(x, y), at(x + t + 0.27 * (c1 - c0), y)]);
+        }
+        draw_legend(&mut chart, emptiest_corner(&curves, (0.2, 0.2)).0)?;
         // (b) the spectrum in hertz
         let top_v = d.spectrum.iter().map(|s| s.0).fold(0.0, f64::max);
         let least = d.spectrum.iter().map(|s| s.0).fold(f64::INFINITY, f64::min);
@@ -89,7 +101,7 @@ pub fn plot(d: &ExperimentData) -> Result<String, RenderError> {
         styled_mesh(&mut chart)
             .x_desc("frequency (Hz)")
             .y_desc("Vₙ / (ω · free amplitude)")
-            .y_label_formatter(&|y| format!("{y:.0e}"))
+            .y_label_formatter(&power_of_ten)
             .draw()
             .map_err(drawing)?;
         let width = 0.3 * d.forcing.0;
@@ -125,26 +137,35 @@ pub fn plot(d: &ExperimentData) -> Result<String, RenderError> {
 
 /// Beam theory over the rig's tolerances: each quantity nominal, lowest and highest.
 pub fn table(d: &ExperimentData) -> String {
+    use crate::base::report::{Cited, KeyValue, Uncertainty};
     let m = &d.mapping;
-    let row = |name: &str, r: &super::Ranged, scale: f64, decimals: usize| {
+    // the text quotes each range as its middle ± half its width, to the figures of the
+    // chapter's key numbers (`digits`)
+    let row = |name: &str, r: &super::Ranged, scale: f64, decimals: usize, digits: usize| {
+        let (lo, hi) = (r.range.0 * scale, r.range.1 * scale);
+        let quoted = Cited::new(0.5 * (lo + hi), digits, Uncertainty::new(0.5 * (hi - lo), ""), "");
         vec![
             name.to_string(),
             format!("{:.*}", decimals, r.nominal * scale),
-            format!("{:.*}", decimals, r.range.0 * scale),
-            format!("{:.*}", decimals, r.range.1 * scale),
+            format!("{:.*}", decimals, lo),
+            format!("{:.*}", decimals, hi),
+            KeyValue::Float(quoted).prose(true),
         ]
     };
     let rows = vec![
-        row("$f_1$ of the strip (Hz)", &m.f1_theory, 1.0, 2),
-        row("free length for 5.92 Hz (mm)", &m.length_for_measured, 1e3, 0),
-        row("tip mass for 5.92 Hz (× strip's mass)", &m.tip_mass_fraction, 1.0, 2),
-        row("pin stiffness $K$ (kN/m)", &m.pin_stiffness, 1e-3, 1),
-        row("$k/k_1$", &m.k_ratio, 1.0, 0),
-        row("$k/k_1$ at the free length for 5.92 Hz", &m.k_ratio_effective_length, 1.0, 0),
-        row("the pin's first resonance (Hz)", &m.pin_resonance, 1.0, 0),
-        row("the pin's modal tip mass / the strip's", &m.pin_mass_ratio, 1.0, 1),
+        row("$f_1$ of the strip (Hz)", &m.f1_theory, 1.0, 2, 4),
+        row("free length for 5.92 Hz (mm)", &m.length_for_measured, 1e3, 0, 4),
+        row("tip mass for 5.92 Hz (× strip's mass)", &m.tip_mass_fraction, 1.0, 2, 3),
+        row("pin stiffness $K$ (kN/m)", &m.pin_stiffness, 1e-3, 1, 4),
+        row("$k/k_1$", &m.k_ratio, 1.0, 0, 4),
+        row("$k/k_1$ at the free length for 5.92 Hz", &m.k_ratio_effective_length, 1.0, 0, 4),
+        row("the pin's first resonance (Hz)", &m.pin_resonance, 1.0, 0, 4),
+        row("the pin's modal tip mass / the strip's", &m.pin_mass_ratio, 1.0, 1, 3),
     ];
-    markdown_table(&["quantity", "nominal", "lowest", "highest"], &rows)
+    markdown_table(
+        &["quantity", "nominal rig", "lowest", "highest", "quoted in the text: middle ± half the range"],
+        &rows,
+    )
 }
 
 /// The Figure 9 orbit under eq (37) and in the two sensitivity runs.

@@ -2,6 +2,7 @@
 //! each N (panels a–c), and λ_N/(kN) (panel d).
 
 use crate::results::render::{
+    power_of_ten,
     cell, dashed_key, draw_legend, drawing, markdown_table, palette, solid_key, styled_mesh,
     RenderError, CAPTION_FONT, WIDTH,
 };
@@ -40,8 +41,8 @@ pub fn plot(d: &Fig2Data) -> Result<String, RenderError> {
                 .map_err(drawing)?;
             styled_mesh(&mut chart)
                 .x_desc("k / k₁")
-                .x_label_formatter(&|x| format!("{x:.0e}"))
-                .y_label_formatter(&|y| format!("{y:.0e}"))
+                .x_label_formatter(&power_of_ten)
+                .y_label_formatter(&power_of_ten)
                 .draw()
                 .map_err(drawing)?;
             for (i, lam) in t.lambda.iter().enumerate() {
@@ -99,8 +100,8 @@ pub fn plot(d: &Fig2Data) -> Result<String, RenderError> {
             .map_err(drawing)?;
         styled_mesh(&mut chart)
             .x_desc("k / k₁")
-            .x_label_formatter(&|x| format!("{x:.0e}"))
-            .y_label_formatter(&|y| format!("{y:.0e}"))
+            .x_label_formatter(&power_of_ten)
+            .y_label_formatter(&power_of_ten)
             .draw()
             .map_err(drawing)?;
         for (p, (t, e)) in d.truncations.iter().zip(&excess).enumerate() {

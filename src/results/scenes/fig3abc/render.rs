@@ -2,6 +2,8 @@
 //! convergence for every N.
 
 use crate::results::render::{
+    axis_fraction, emptiest_corner,
+    power_of_ten,
     cell,
     dashed_key, draw_legend, drawing, markdown_table, palette, solid_key, styled_mesh,
     RenderError, CAPTION_FONT, WIDTH,
@@ -16,27 +18,42 @@ fn panel<DB: DrawingBackend>(
     simulated: &[f64],
     predicted: &[f64],
     labels: (&str, &str),
-    legend: SeriesLabelPosition,
 ) -> Result<(), RenderError> {
     let (lo, hi) = simulated
         .iter()
         .chain(predicted)
         .fold((f64::MAX, f64::MIN), |(a, b), &v| (a.min(v), b.max(v)));
     let pad = 0.05 * (hi - lo).max(1e-6);
+    // the legend (two rows, about 0.7 of the width and 0.2 of the height, with its margin) in a corner
+    // free of data, with room made below the data if no corner is free
+    let xs = (eps[0], eps[eps.len() - 1]);
+    let mut placed = (SeriesLabelPosition::LowerLeft, (lo - pad, hi + pad));
+    for room in [0.0, 0.2, 0.4] {
+        let ys = (lo - pad - room * (hi - lo), hi + pad);
+        let curve = |v: &[f64]| -> Vec<(f64, f64)> {
+            eps.iter()
+                .zip(v)
+                .map(|(&e, &y)| (axis_fraction(e, xs, true), axis_fraction(y, ys, false)))
+                .collect()
+        };
+        let (corner, covered) = emptiest_corner(&[curve(simulated), curve(predicted)], (0.75, 0.24));
+        placed = (corner, ys);
+        if covered == 0 {
+            break;
+        }
+    }
+    let (corner, ys) = placed;
     let mut chart = ChartBuilder::on(area)
         .caption(title, CAPTION_FONT)
         .margin(8)
         .margin_right(28)
         .x_label_area_size(44)
         .y_label_area_size(64)
-        .build_cartesian_2d(
-            (eps[0]..eps[eps.len() - 1]).log_scale(),
-            (lo - pad)..(hi + pad),
-        )
+        .build_cartesian_2d((xs.0..xs.1).log_scale(), ys.0..ys.1)
         .map_err(drawing)?;
     styled_mesh(&mut chart)
         .x_desc("ε")
-        .x_label_formatter(&|x| format!("{x:.0e}"))
+        .x_label_formatter(&power_of_ten)
         .draw()
         .map_err(drawing)?;
     let c = palette(0);
@@ -58,7 +75,7 @@ fn panel<DB: DrawingBackend>(
         .map_err(drawing)?
         .label(labels.1)
         .legend(dashed_key(BLACK.stroke_width(1)));
-    draw_legend(&mut chart, legend)?;
+    draw_legend(&mut chart, corner)?;
     Ok(())
 }
 
@@ -78,7 +95,6 @@ pub fn plot(d: &Fig3abcData) -> Result<String, RenderError> {
                 &one.simulated,
                 &one.asymptotic,
                 ("simulated", "rₑ², eq (19)"),
-                SeriesLabelPosition::LowerLeft,
             )?;
         }
         if let Some(two) = d.series.iter().find(|s| s.modes == 2) {
@@ -90,7 +106,6 @@ pub fn plot(d: &Fig3abcData) -> Result<String, RenderError> {
                 &col(0, &two.simulated),
                 &col(0, &two.predicted),
                 ("simulated", "[R]₁₁ = (1 − rₑ)/2"),
-                SeriesLabelPosition::UpperLeft,
             )?;
             panel(
                 &cells[2],
@@ -99,7 +114,6 @@ pub fn plot(d: &Fig3abcData) -> Result<String, RenderError> {
                 &col(1, &two.simulated),
                 &col(1, &two.predicted),
                 ("simulated", "[R]₂₁ = (3rₑ − 1)/2"),
-                SeriesLabelPosition::MiddleLeft,
             )?;
         }
         let gmin = d
@@ -128,8 +142,8 @@ pub fn plot(d: &Fig3abcData) -> Result<String, RenderError> {
             .map_err(drawing)?;
         styled_mesh(&mut chart)
             .x_desc("ε")
-            .x_label_formatter(&|x| format!("{x:.0e}"))
-            .y_label_formatter(&|y| format!("{y:.0e}"))
+            .x_label_formatter(&power_of_ten)
+            .y_label_formatter(&power_of_ten)
             .draw()
             .map_err(drawing)?;
         for (i, s) in d.series.iter().enumerate() {

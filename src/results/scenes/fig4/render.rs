@@ -1,7 +1,7 @@
 //! Figure 4: one period of each orbit — tip displacement against time and the phase
 //! portrait — free flight in blue, contact in red.
 
-use crate::results::render::{drawing, markdown_table, styled_mesh, RenderError, CAPTION_FONT, WIDTH};
+use crate::results::render::{clip_to_band, drawing, markdown_table, styled_mesh, RenderError, CAPTION_FONT, WIDTH};
 use crate::analysis::orbit::OrbitKind;
 use crate::base::report::format_sig;
 use super::Fig4Data;
@@ -148,9 +148,11 @@ fn contact_magnified<DB: DrawingBackend>(
         .map_err(drawing)?;
     for (line, c) in pieces(&inside) {
         let color = if c { CONTACT } else { FREE };
-        chart
-            .draw_series(LineSeries::new(line, color.stroke_width(2)))
-            .map_err(drawing)?;
+        for part in clip_to_band(&line, (lo, hi)) {
+            chart
+                .draw_series(LineSeries::new(part, color.stroke_width(2)))
+                .map_err(drawing)?;
+        }
     }
     Ok(())
 }

@@ -1,6 +1,7 @@
 //! Figure 5: impact velocities on the impact section against k, one panel per N.
 
 use crate::results::render::{
+    power_of_ten,
     cell, dashed_key, draw_legend, drawing, markdown_table, styled_mesh, RenderError,
     CAPTION_FONT, LABEL_FONT, WIDTH,
 };
@@ -51,7 +52,7 @@ pub fn plot(d: &Fig5Data) -> Result<String, RenderError> {
             styled_mesh(&mut chart)
                 .x_desc("k / k₁")
                 .y_desc("impact velocity / (ω · free amplitude)")
-                .x_label_formatter(&|x| format!("{x:.0e}"))
+                .x_label_formatter(&power_of_ten)
                 .draw()
                 .map_err(drawing)?;
             let quantum = 1e-3 * vmax;

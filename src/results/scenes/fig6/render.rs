@@ -29,9 +29,9 @@ pub fn r_text(c: &Option<Coefficient>) -> String {
 
 fn title(c: &Case) -> String {
     let which = if c.panel == "b" {
-        "(b)".to_string()
+        "Fig 6(b)".to_string()
     } else {
-        format!("(a), d₀/A_free = {:.3}", c.gap_over_free_amplitude)
+        format!("Fig 6(a), d₀/A_free = {:.3}", c.gap_over_free_amplitude)
     };
     let r = c
         .coefficient
@@ -137,9 +137,9 @@ fn scan_panel<DB: DrawingBackend>(
     let mut chart = ChartBuilder::on(area)
         .caption(
             if velocity {
-                "(a) impact velocity against the stop's distance"
+                "Fig 6(a) scan: impact velocity against d₀"
             } else {
-                "(a) energetic restitution against the stop's distance"
+                "Fig 6(a) scan: energetic restitution against d₀"
             },
             CAPTION_FONT,
         )

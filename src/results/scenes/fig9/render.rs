@@ -3,6 +3,7 @@
 
 use super::{Fig9Data, ScanPoint};
 use crate::results::render::{
+    power_of_ten,
     cell, draw_legend, drawing, markdown_table, palette, solid_key, styled_mesh, RenderError,
     CAPTION_FONT, LABEL_FONT, WIDTH,
 };
@@ -86,7 +87,7 @@ fn spectrum_panel<DB: DrawingBackend>(
         // n is an integer: ticks every 5
         .x_labels(n / 5 + 2)
         .x_label_formatter(&|x| format!("{x:.0}"))
-        .y_label_formatter(&|y| format!("{y:.0e}"))
+        .y_label_formatter(&power_of_ten)
         .draw()
         .map_err(drawing)?;
     for (i, &h) in d.mode_harmonics.iter().enumerate() {

@@ -4,6 +4,7 @@
 use super::{best_error, OrbitData, ProblemData, Series, SideBySideData};
 use crate::base::report::format_sig;
 use crate::results::render::{
+    power_of_ten,
     drawing, markdown_table, palette, styled_mesh, RenderError, CAPTION_FONT, LABEL_FONT, WIDTH,
 };
 use plotters::prelude::*;
@@ -70,8 +71,8 @@ where
     styled_mesh(&mut chart)
         .x_desc("CPU time (s)")
         .y_desc(y_desc)
-        .x_label_formatter(&|v| format!("{v:.0e}"))
-        .y_label_formatter(&|v| format!("{v:.0e}"))
+        .x_label_formatter(&power_of_ten)
+        .y_label_formatter(&power_of_ten)
         .draw()
         .map_err(drawing)?;
     Ok(chart)
@@ -316,9 +317,22 @@ pub fn setup(d: &SideBySideData) -> String {
         ],
     ];
     for (k, v) in &d.versions {
-        rows.push(vec![k.clone(), v.clone()]);
+        // the result files' keys, in words
+        let name = match k.as_str() {
+            "cantilever" => "this project's command line",
+            "commit" => "this project's commit for these runs",
+            "siconos_numpy" => "NumPy used by Siconos",
+            "siconos_python" => "Python used by Siconos",
+            "python" => "Python",
+            "numpy" => "NumPy",
+            "scipy" => "SciPy",
+            "siconos" => "Siconos",
+            "rustc" => "Rust compiler",
+            other => other,
+        };
+        rows.push(vec![name.to_string(), v.clone()]);
     }
-    markdown_table(&["", "value"], &rows)
+    markdown_table(&["setting", "value"], &rows)
 }
 
 /// The problems and their references.
@@ -328,7 +342,7 @@ pub fn problems(d: &SideBySideData) -> String {
         .iter()
         .map(|p| {
             vec![
-                p.title.clone(),
+                p.title.replace("]_IR", "]<sub>IR</sub>"),
                 p.periods.to_string(),
                 format!("{} ({})", p.ours_events, p.reference_events),
                 p.reference.clone(),

@@ -2,6 +2,8 @@
 //! clamped-pinned asymptotes; the remainder of (4) against k.
 
 use crate::results::render::{
+    axis_fraction, emptiest_corner,
+    power_of_ten,
     cell, dashed_key, draw_legend, drawing, markdown_table, palette, solid_key, styled_mesh,
     RenderError, CAPTION_FONT, LABEL_FONT, WIDTH,
 };
@@ -9,6 +11,7 @@ use crate::base::report::format_sig;
 use super::SpectrumData;
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 /// The SVG plot.
 pub fn plot(d: &SpectrumData) -> Result<String, RenderError> {
@@ -29,7 +32,8 @@ pub fn plot(d: &SpectrumData) -> Result<String, RenderError> {
             .map_err(drawing)?;
         styled_mesh(&mut chart)
             .x_desc("k / k₁")
-            .x_label_formatter(&|x| format!("{x:.0e}"))
+            .x_label_formatter(&power_of_ten)
+            .y_label_formatter(&|y| format!("{y:.0}"))
             .draw()
             .map_err(drawing)?;
         for (i, f) in d.frequency.iter().enumerate() {
@@ -45,8 +49,11 @@ pub fn plot(d: &SpectrumData) -> Result<String, RenderError> {
                 chart
                     .draw_series(std::iter::once(Text::new(
                         format!("i = {}", i + 1),
-                        (hi / 300.0, last * 1.12),
-                        LABEL_FONT.into_font().color(&c),
+                        (hi / 300.0, last * 1.04),
+                        LABEL_FONT
+                            .into_font()
+                            .color(&c)
+                            .pos(Pos::new(HPos::Left, VPos::Bottom)),
                     )))
                     .map_err(drawing)?;
             }
@@ -89,8 +96,10 @@ pub fn plot(d: &SpectrumData) -> Result<String, RenderError> {
 
         let s = &d.small_k;
         let k1 = d.k1;
+        let (kmin, kmax) = (s.k[0] / k1 / 1.5, s.k[s.k.len() - 1] / k1 * 1.5);
         let (xmin, xmax) = (s.k[0] / k1 / 2.0, s.k[s.k.len() - 1] / k1 * 2.0);
-        let rmax = s.remainder.iter().map(|r| r.abs()).fold(0.0, f64::max) * 10.0;
+        // three decades of room above the data for the legend
+        let rmax = s.remainder.iter().map(|r| r.abs()).fold(0.0, f64::max) * 1e3;
         let rmin = s.remainder.iter().map(|r| r.abs()).fold(f64::MAX, f64::min) / 10.0;
         let mut chart = ChartBuilder::on(&right)
             .caption("remainder of eq (4), mode 1", CAPTION_FONT)
@@ -103,8 +112,8 @@ pub fn plot(d: &SpectrumData) -> Result<String, RenderError> {
         styled_mesh(&mut chart)
             .x_desc("k / k₁")
             .y_desc("|(β₁⁺)⁴ − (β₁⁻)⁴ − k|")
-            .x_label_formatter(&|x| format!("{x:.0e}"))
-            .y_label_formatter(&|y| format!("{y:.0e}"))
+            .x_label_formatter(&power_of_ten)
+            .y_label_formatter(&power_of_ten)
             .draw()
             .map_err(drawing)?;
         chart
@@ -119,13 +128,19 @@ pub fn plot(d: &SpectrumData) -> Result<String, RenderError> {
         let c = s.predicted_coefficient.abs();
         chart
             .draw_series(LineSeries::new(
-                [xmin, xmax].map(|x| (x, c * (x * k1).powi(2))),
+                [kmin, kmax].map(|x| (x, c * (x * k1).powi(2))),
                 palette(1).stroke_width(1),
             ))
             .map_err(drawing)?
             .label("second-order theory, c·k²")
             .legend(solid_key(palette(1).stroke_width(1)));
-        draw_legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
+        let (xs, ys) = ((xmin, xmax), (rmin, rmax));
+        let at = |x: f64, y: f64| (axis_fraction(x, xs, true), axis_fraction(y, ys, true));
+        let mut curves: Vec<Vec<(f64, f64)>> =
+            s.k.iter().zip(&s.remainder).map(|(&k, &r)| vec![at(k / k1, r.abs())]).collect();
+        curves.push([kmin, kmax].map(|x| at(x, c * (x * k1).powi(2))).to_vec());
+        // the legend is about as wide as this narrow panel
+        draw_legend(&mut chart, emptiest_corner(&curves, (0.95, 0.2)).0)?;
         root.present().map_err(drawing)?;
     }
     Ok(svg)

@@ -4,6 +4,7 @@
 use super::MatchingData;
 use crate::analysis::convergence::Needed;
 use crate::results::render::{
+    power_of_ten,
     cell, dashed_key, draw_legend, drawing, log_log_mesh, markdown_table, palette, solid_key,
     styled_mesh, RenderError, CAPTION_FONT, WIDTH,
 };
@@ -90,7 +91,7 @@ fn errors<DB: DrawingBackend>(
         .y_desc("relative error of the exit tip velocity")
         .x_labels(6)
         .x_label_formatter(&|x| format!("{x:.0}"))
-        .y_label_formatter(&|y| format!("{y:.0e}"))
+        .y_label_formatter(&power_of_ten)
         .draw()
         .map_err(drawing)?;
     for (i, (k, pts)) in series.iter().enumerate() {
@@ -137,7 +138,7 @@ fn needed<DB: DrawingBackend>(
         chart
             .draw_series(LineSeries::new(pts.iter().map(|p| (p.0, p.1)), c.stroke_width(2)))
             .map_err(drawing)?
-            .label(format!("N* for relative error {tol:.0e}"))
+            .label(format!("N* for relative error {}", power_of_ten(&tol)))
             .legend(solid_key(c.stroke_width(2)));
         chart
             .draw_series(pts.iter().map(|p| {

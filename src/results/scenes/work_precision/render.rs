@@ -2,6 +2,7 @@
 //! series per method.
 
 use crate::results::render::{
+    power_of_ten,
     draw_legend, drawing, markdown_table, palette, solid_key, styled_mesh, RenderError,
     CAPTION_FONT, WIDTH,
 };
@@ -50,8 +51,8 @@ pub fn plot(d: &WorkPrecisionData) -> Result<String, RenderError> {
                 .map_err(drawing)?;
             styled_mesh(&mut chart)
                 .x_desc("wall time (s)")
-                .x_label_formatter(&|x| format!("{x:.0e}"))
-                .y_label_formatter(&|y| format!("{y:.0e}"))
+                .x_label_formatter(&power_of_ten)
+                .y_label_formatter(&power_of_ten)
                 .draw()
                 .map_err(drawing)?;
             for (s, method) in ["exact", "DP5 reference"].iter().enumerate() {
@@ -179,13 +180,13 @@ pub fn timing_summary(d: &WorkPrecisionData) -> String {
     );
     if let (Some(e), Some(r)) = (exact, dp5) {
         s.push_str(&format!(
-            "For {} periods the exact method at root tolerance 10⁻⁶ took {:.2} ms; the fastest \
-             DP5 run with event times within 10⁻¹⁰ (rtol {:e}) took {:.0} ms — {:.0} times longer.",
+            "For {} periods the exact method at root tolerance 10⁻⁶ took {} ms; the fastest \
+             DP5 run with event times within 10⁻¹⁰ (rtol {}) took {} ms — about {} times longer.",
             d.params.periods,
-            e.seconds * 1e3,
-            r.tolerance,
-            r.seconds * 1e3,
-            r.seconds / e.seconds
+            crate::base::report::pretty(e.seconds * 1e3, 3),
+            crate::results::render::power_of_ten(&r.tolerance),
+            crate::base::report::pretty(r.seconds * 1e3, 3),
+            crate::base::report::pretty(r.seconds / e.seconds, 2)
         ));
     }
     s.push('\n');
@@ -240,10 +241,10 @@ fn scaling_panels(
                 if by_modes {
                     format!("{}", v.round())
                 } else {
-                    format!("{v:.0e}")
+                    power_of_ten(v)
                 }
             })
-            .y_label_formatter(&|y| format!("{y:.0e}"))
+            .y_label_formatter(&power_of_ten)
             .draw()
             .map_err(drawing)?;
         for (s, (label, p)) in series.iter().enumerate() {
