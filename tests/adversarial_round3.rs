@@ -869,6 +869,26 @@ fn item_14_errors_come_before_the_work_and_say_the_real_cause() {
     let (code, _, err) = cantilever_in(&d, &["atlas", "--resolution", "test", "--out", "new/"]);
     assert_eq!(code, 2, "{err}");
     assert!(!d.join("new").exists());
+    // a tiny k is written as typed, not as 300 zeros
+    let (code, out, err) = cantilever(&[
+        "orbit",
+        "--modes",
+        "3",
+        "--zeta1",
+        "0.01",
+        "--omega",
+        "2",
+        "--periods",
+        "200",
+        "--stop-stiffness",
+        "1e-300",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let first = out.lines().next().unwrap_or("");
+    assert!(
+        first.contains("k = 1e-300k₁") && first.len() < 200,
+        "{first}"
+    );
     // one file for two outputs: the second would replace the first
     let (code, _, err) = cantilever_in(
         &d,
@@ -980,4 +1000,85 @@ fn item_15_an_imbalance_above_its_bound_is_flagged() {
     ]);
     assert_eq!(code, 0, "{err}");
     assert!(out.contains("ABOVE its round-off bound"), "{out}");
+}
+
+/// A `--final-state` file carries N and the forcing phase it ended at: continued under
+/// another N, or from mid-period (a run that stopped early), it is refused — every run
+/// starts at phase 0, so the forcing would be out of phase with the state.
+#[test]
+fn a_state_file_of_another_model_or_phase_is_refused() {
+    let d = scratch("state-files");
+    let (code, _, err) = cantilever_in(
+        &d,
+        &[
+            "simulate",
+            "--modes",
+            "3",
+            "--zeta1",
+            "0.01",
+            "--omega",
+            "2",
+            "--periods",
+            "5",
+            "--record",
+            "2",
+            "--final-state",
+            "s.json",
+        ],
+    );
+    assert_eq!(code, 0, "{err}");
+    let text = std::fs::read_to_string(d.join("s.json")).unwrap();
+    // the chain itself works
+    let (code, _, err) = cantilever_in(
+        &d,
+        &[
+            "simulate",
+            "--modes",
+            "3",
+            "--zeta1",
+            "0.01",
+            "--omega",
+            "2",
+            "--periods",
+            "1",
+            "--record",
+            "2",
+            "--initial-state",
+            "s.json",
+        ],
+    );
+    assert_eq!(code, 0, "{err}");
+    // the same numbers, said to be of 4 modes
+    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    v["modes"] = 4.into();
+    std::fs::write(d.join("four.json"), v.to_string()).unwrap();
+    // and at mid-period
+    let mut w: serde_json::Value = serde_json::from_str(&text).unwrap();
+    w["phase"] = 0.0336.into();
+    std::fs::write(d.join("mid.json"), w.to_string()).unwrap();
+    for (file, says) in [("four.json", "4 modes"), ("mid.json", "phase 0.033600")] {
+        let (code, _, err) = cantilever_in(
+            &d,
+            &[
+                "simulate",
+                "--modes",
+                "3",
+                "--zeta1",
+                "0.01",
+                "--omega",
+                "2",
+                "--periods",
+                "1",
+                "--record",
+                "2",
+                "--initial-state",
+                file,
+            ],
+        );
+        assert_eq!(code, 2, "{file}: {err}");
+        assert!(
+            err.contains("--initial-state") && err.contains(says),
+            "{err}"
+        );
+    }
 }

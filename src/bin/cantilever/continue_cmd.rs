@@ -150,21 +150,33 @@ pub fn run(args: &ContinueArgs) -> Result<Report, Error> {
     })
 }
 
+/// A parameter value for the text: six decimals for moderate sizes, e-notation beyond (a
+/// k of 1e-300 would otherwise print as 300 zeros).
+pub fn num(x: f64) -> String {
+    if x == 0.0 || (1e-3..1e7).contains(&x.abs()) {
+        format!("{x:.6}")
+    } else {
+        format!("{x:.6e}")
+    }
+}
+
 /// Plain-text summary: each branch's extent and its bifurcations.
 pub fn to_text(r: &Report) -> String {
     let mut s = format!(
         "N = {}, continuation in {} from {}\n",
-        r.modes, r.parameter, r.start
+        r.modes,
+        r.parameter,
+        num(r.start)
     );
     for (i, b) in r.branches.iter().enumerate() {
         let (first, last) = (&b.points[0], &b.points[b.points.len() - 1]);
         s.push_str(&format!(
-            "branch {i}: period {}, {} points, {} = {:.6} → {:.6} ({}){}\n",
+            "branch {i}: period {}, {} points, {} = {} → {} ({}){}\n",
             b.period_m,
             b.points.len(),
             r.parameter,
-            first.parameter,
-            last.parameter,
+            num(first.parameter),
+            num(last.parameter),
             b.end,
             b.parent.map_or(String::new(), |p| format!(
                 ", born at a period doubling of branch {p}"
@@ -172,12 +184,12 @@ pub fn to_text(r: &Report) -> String {
         ));
         for f in &b.bifurcations {
             s.push_str(&format!(
-                "  {:<16} at {} = {:.6} (between {:.6} and {:.6}); contacts {} → {}, {} → {}\n",
+                "  {:<16} at {} = {} (between {} and {}); contacts {} → {}, {} → {}\n",
                 f.kind.to_string(),
                 r.parameter,
-                f.parameter,
-                f.between.0,
-                f.between.1,
+                num(f.parameter),
+                num(f.between.0),
+                num(f.between.1),
                 f.impacts.0,
                 f.impacts.1,
                 if f.stable.0 { "stable" } else { "unstable" },

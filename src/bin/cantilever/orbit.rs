@@ -126,6 +126,10 @@ pub fn to_text(r: &Report) -> String {
                 .unwrap_or_default();
             format!("rigid-impact, {name} law, r = {e}")
         }
+        // as typed: the shortest form, in e-notation beyond moderate sizes
+        _ if r.k_over_k1 != 0.0 && !(1e-3..1e7).contains(&r.k_over_k1) => {
+            format!("compliant, k = {:e}k₁", r.k_over_k1)
+        }
         _ => format!("compliant, k = {}k₁", r.k_over_k1),
     };
     let mut s = format!(

@@ -134,7 +134,8 @@ pub struct SimulateArgs {
     #[arg(long, allow_hyphen_values = true, default_value_t = 0.8)]
     pub restitution: f64,
     /// Start from a modal state [η; η̇] in a JSON file (an array of 2N numbers, or the
-    /// object written by --final-state).
+    /// object written by --final-state: of the same N, and ended at a period boundary, as
+    /// every run starts at phase 0 of the forcing).
     #[arg(long, conflicts_with_all = ["initial_profile", "seed"])]
     pub initial_state: Option<PathBuf>,
     /// Start from displacement and velocity profiles in a JSON file

@@ -67,6 +67,27 @@ fn read_initial_state(
     if let Some(path) = &args.initial_state {
         let v = read_json("--initial-state", path)?;
         let state = v.get("state").unwrap_or(&v);
+        // a --final-state file says what it is: N and the forcing phase it ended at
+        if let Some(m) = v.get("modes") {
+            if m.as_u64() != Some(n as u64) {
+                return Err(ParameterError::new(
+                    "--initial-state",
+                    format!("a state of {m} modes"),
+                    &format!("a state of the model's N = {n} modes"),
+                ));
+            }
+        }
+        if let Some(phase) = v.get("phase").and_then(|p| p.as_f64()) {
+            // a run starts at phase 0 of the forcing: a state from mid-period (a run that
+            // stopped early) would be continued with the forcing out of phase
+            if phase.abs() > 1e-9 && (1.0 - phase).abs() > 1e-9 {
+                return Err(ParameterError::new(
+                    "--initial-state",
+                    format!("a state at phase {phase:.6} of the forcing period"),
+                    "a state at the start of a forcing period (phase 0), where every run starts",
+                ));
+            }
+        }
         let x = numbers("--initial-state", state, "the state")?;
         if x.len() != 2 * n {
             return Err(ParameterError::new(
