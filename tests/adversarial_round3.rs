@@ -699,7 +699,7 @@ fn item_9_atlas_merge_checks_every_field_of_a_shard() {
     let good: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(d.join("s.json")).unwrap()).unwrap();
     type Edit = fn(&mut serde_json::Value);
-    let cases: [(&str, Edit, &str); 9] = [
+    let cases: [(&str, Edit, &str); 12] = [
         (
             "m0",
             |v| v["rows"][0]["cells"][0]["attractors"][0]["period_m"] = 0.into(),
@@ -732,6 +732,31 @@ fn item_9_atlas_merge_checks_every_field_of_a_shard() {
             "unsettled_starts",
         ),
         ("row", |v| v["rows"][0]["index"] = 1.into(), "row 1"),
+        (
+            // one attractor copied: its starts twice in one cell
+            "copies",
+            |v| {
+                let a = v["rows"][0]["cells"][0]["attractors"][0].clone();
+                v["rows"][0]["cells"][0]["attractors"]
+                    .as_array_mut()
+                    .unwrap()
+                    .push(a);
+            },
+            "starts",
+        ),
+        (
+            "velocities",
+            |v| {
+                v["rows"][0]["cells"][0]["attractors"][0]["impact_velocities"] =
+                    serde_json::json!([1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0])
+            },
+            "impact_velocities",
+        ),
+        (
+            "continued",
+            |v| v["rows"][0]["cells"][0]["attractors"][0]["continued"] = true.into(),
+            "attractors",
+        ),
         (
             "check",
             |v| {

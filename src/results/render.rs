@@ -148,16 +148,31 @@ fn e_notation_at(chars: &[char], i: usize) -> Option<(String, usize)> {
         return None;
     }
     let exponent: String = chars[j..j + n].iter().collect();
-    let exponent = exponent.trim_start_matches('0');
-    if exponent.is_empty() {
-        return Some((mantissa, j + n - i));
-    }
-    let sup = superscript(exponent.parse::<i32>().unwrap_or(0) * if negative { -1 } else { 1 });
-    let unit = if unit_k1 { " " } else { "" };
-    Some(if mantissa == "1" {
-        (format!("10{sup}{unit}"), j + n - i)
+    let e = exponent.parse::<i32>().unwrap_or(0) * if negative { -1 } else { 1 };
+    // the mantissa's figures without trailing zeros: 1.000e1 is the integer 10
+    let mantissa = if mantissa.contains('.') {
+        mantissa
+            .trim_end_matches('0')
+            .trim_end_matches('.')
+            .to_string()
     } else {
-        (format!("{mantissa} × 10{sup}{unit}"), j + n - i)
+        mantissa
+    };
+    let unit = if unit_k1 { " " } else { "" };
+    let span = j + n - i;
+    // moderate sizes plainly, as the book prints them elsewhere (1.778e3 is 1778)
+    if (-3..=5).contains(&e) {
+        let value: f64 = format!("{mantissa}e{e}").parse().ok()?;
+        let figures = mantissa.chars().filter(|c| c.is_ascii_digit()).count() as i32;
+        let decimals = (figures - 1 - e).max(0) as usize;
+        return Some((format!("{value:.decimals$}{unit}"), span));
+    }
+    // the rest as a power of ten, never broken across lines at its ×
+    let sup = superscript(e);
+    Some(if mantissa == "1" {
+        (format!("10{sup}{unit}"), span)
+    } else {
+        (format!("{mantissa}\u{a0}×\u{a0}10{sup}{unit}"), span)
     })
 }
 
@@ -192,7 +207,8 @@ pub fn readable_numbers(text: &str) -> String {
         out.push(c);
         i += 1;
     }
-    out
+    // a power of ten is not broken across lines at its ×
+    out.replace(" × 10", "\u{a0}×\u{a0}10")
 }
 
 /// Text for a page or a table with the paper's subscripts as HTML: `r_E`, `A_free`, `β_N`, `[R]_N`
@@ -456,12 +472,19 @@ mod tests {
     #[test]
     fn e_notation_becomes_powers_of_ten_and_identifiers_stay() {
         assert_eq!(readable_numbers("below 1e-12."), "below 10⁻¹².");
-        assert_eq!(readable_numbers("k = 1.778e3k₁)"), "k = 1.778 × 10³ k₁)");
-        assert_eq!(readable_numbers("to 3.6e-16;"), "to 3.6 × 10⁻¹⁶;");
-        assert_eq!(readable_numbers("(1e2 times"), "(10² times");
-        assert_eq!(readable_numbers("is 1.2e-5 at"), "is 1.2 × 10⁻⁵ at");
+        assert_eq!(readable_numbers("k = 1.778e3k₁)"), "k = 1778 k₁)");
+        assert_eq!(readable_numbers("k = 1.000e1k₁)"), "k = 10 k₁)");
+        assert_eq!(readable_numbers("to 3.6e-16;"), "to 3.6\u{a0}×\u{a0}10⁻¹⁶;");
+        assert_eq!(readable_numbers("(1e2 times"), "(100 times");
+        assert_eq!(
+            readable_numbers("is 1.2e-5 at"),
+            "is 1.2\u{a0}×\u{a0}10⁻⁵ at"
+        );
+        assert_eq!(readable_numbers("is 2.5e-3 at"), "is 0.0025 at");
         assert_eq!(readable_numbers("ε = 1e0"), "ε = 1");
         assert_eq!(readable_numbers("rtol 1e+06"), "rtol 10⁶");
+        assert_eq!(readable_numbers("k = 1.00e6 k₁"), "k = 10⁶ k₁");
+        assert_eq!(readable_numbers("2.424e0, 3.635e-1"), "2.424, 0.3635");
         // not numbers in e-notation: identifiers, hashes, code, versions, ranges
         assert_eq!(readable_numbers("commit 5e31a2c"), "commit 5e31a2c");
         assert_eq!(readable_numbers("x1e3 a1e-3"), "x1e3 a1e-3");

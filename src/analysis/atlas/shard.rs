@@ -117,12 +117,48 @@ impl Partial {
                     if a.starts.iter().any(|&s| s >= p.starts) {
                         return bad(at("starts"), "start indices below `starts`");
                     }
+                    if a.impact_velocities.len() != a.impacts_n {
+                        return bad(
+                            at("impact_velocities"),
+                            "one velocity per entry (impacts_n)",
+                        );
+                    }
+                    if a.starts.is_empty() && !a.continued {
+                        return bad(at("starts"), "a start that reached it, or `continued`");
+                    }
                 }
                 if c.from_rest.is_some_and(|k| k >= c.attractors.len()) {
                     return bad(at("from_rest"), "the index of one of the cell's attractors");
                 }
                 if c.unsettled_starts > p.starts {
                     return bad(at("unsettled_starts"), "at most `starts`");
+                }
+                // each start reaches one attractor or none (unsettled); rest is start 0
+                let mut seen = vec![false; p.starts];
+                for s in c.attractors.iter().flat_map(|a| &a.starts) {
+                    if std::mem::replace(&mut seen[*s], true) {
+                        return bad(at("starts"), "each start in one attractor at most");
+                    }
+                }
+                let reached = seen.iter().filter(|&&b| b).count();
+                if reached + c.unsettled_starts != p.starts {
+                    return bad(
+                        at("unsettled_starts"),
+                        "`starts` less the starts that reached an attractor",
+                    );
+                }
+                let rest = c.attractors.iter().position(|a| a.starts.contains(&0));
+                if c.from_rest != rest {
+                    return bad(at("from_rest"), "the attractor that start 0 (rest) reached");
+                }
+                // continued orbits come from the previous cell's, one each at most
+                let continued = c.attractors.iter().filter(|a| a.continued).count();
+                let before = j.checked_sub(1).map_or(0, |b| r.cells[b].attractors.len());
+                if continued > before {
+                    return bad(
+                        at("attractors"),
+                        "at most as many continued orbits as the previous cell has",
+                    );
                 }
                 let checked = i.is_multiple_of(p.check_stride) && j.is_multiple_of(p.check_stride);
                 match &c.check {

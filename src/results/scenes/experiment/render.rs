@@ -84,7 +84,9 @@ pub fn plot(d: &ExperimentData) -> Result<String, RenderError> {
             // the label runs about a quarter of the width past the bar
             curves.push(vec![at(x, y), at(x + t + 0.27 * (c1 - c0), y)]);
         }
-        draw_legend(&mut chart, emptiest_corner(&curves, (0.2, 0.2)).0)?;
+        // two rows with their frame and margin: about a fifth of the width, a third of
+        // this short panel's height
+        draw_legend(&mut chart, emptiest_corner(&curves, (0.22, 0.32)).0)?;
         // (b) the spectrum in hertz
         let top_v = d.spectrum.iter().map(|s| s.0).fold(0.0, f64::max);
         let least = d.spectrum.iter().map(|s| s.0).fold(f64::INFINITY, f64::min);

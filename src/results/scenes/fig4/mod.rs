@@ -321,7 +321,7 @@ impl Scene for Fig4 {
     const CLAIM: &'static str = "From rest the orbits are (1,1), (2,4), (1,3), (1,1) for $N = 1, 2, 3, 10$ at $k = 100k_1$.";
     const CHAPTER: &'static str = "fig4.md";
     const METHOD: &'static str = "the N-mode compliant model from rest, 1000 periods discarded, simulated exactly (piecewise-linear flow, certified switching times); the orbit's period from the stroboscopic map (relative residual < 1e-9), checked with a longer transient, a looser root tolerance, an independent Dormand–Prince integrator, random starts and the other damping reading";
-    const HEADLINE: &'static [(&'static str, &'static str)] = &[("N = 3 orbit", "N=3 orbit"), ("its penetration maxima per period", "N=3 penetration maxima per orbit"), ("its dwell depth over the peak penetration", "N=3 dwell_depth_over_peak")];
+    const HEADLINE: &'static [(&'static str, &'static str)] = &[("N = 3 orbit", "N=3 orbit"), ("its penetration maxima per orbit period", "N=3 penetration maxima per orbit"), ("its dwell depth over the peak penetration", "N=3 dwell_depth_over_peak")];
     type Params = Fig4Params;
     type Data = Fig4Data;
 

@@ -1,7 +1,8 @@
 //! Figure 4: one period of each orbit — tip displacement against time and the phase
 //! portrait — free flight in blue, contact in red.
 
-use crate::results::render::{clip_to_band, drawing, markdown_table, styled_mesh, RenderError, CAPTION_FONT, WIDTH};
+use crate::results::render::{
+    tick,clip_to_band, drawing, markdown_table, styled_mesh, RenderError, CAPTION_FONT, WIDTH};
 use crate::analysis::orbit::OrbitKind;
 use crate::base::report::format_sig;
 use super::Fig4Data;
@@ -55,7 +56,7 @@ pub fn plot(d: &Fig4Data) -> Result<String, RenderError> {
             };
             let (dlo, dhi) = pad(dmin, dmax);
             let (vlo, vhi) = pad(vmin, vmax);
-            let title = format!("N = {}: {} (paper {})", p.modes, p.kind, p.paper);
+            let title = format!("N = {}: {}; paper: {}", p.modes, p.kind, p.paper);
             let mut chart = ChartBuilder::on(&cells[2 * r])
                 .caption(title, CAPTION_FONT)
                 .margin(6)
@@ -139,8 +140,8 @@ fn contact_magnified<DB: DrawingBackend>(
     styled_mesh(&mut chart)
         .x_desc("t / T")
         .y_desc("tip d / free amplitude")
-        // ticks at ±round-off of 0 would read "-0.0"
-        .y_label_formatter(&|y| format!("{:.2}", if y.abs() < 1e-9 { 0.0 } else { *y }))
+        // two decimals, a minus sign, and 0 for a tick at ±round-off of 0
+        .y_label_formatter(&|y| tick(&((y * 100.0).round() / 100.0)))
         .draw()
         .map_err(drawing)?;
     chart

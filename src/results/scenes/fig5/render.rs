@@ -51,7 +51,7 @@ pub fn plot(d: &Fig5Data) -> Result<String, RenderError> {
                 .map_err(drawing)?;
             styled_mesh(&mut chart)
                 .x_desc("k / k₁")
-                .y_desc("impact velocity / (ω · free amplitude)")
+                .y_desc("v / (ω A_free)")
                 .x_label_formatter(&power_of_ten)
                 .draw()
                 .map_err(drawing)?;
@@ -217,17 +217,22 @@ fn branch_legend(
         *x += 44 + 8 * label.chars().count() as i32;
         Ok(())
     };
+    // the points of the diagram itself: the runs from rest and the random starts
+    strip
+        .draw(&Circle::new((x + 13, y), 3, RGBColor(0, 60, 140).mix(0.6).filled()))
+        .map_err(drawing)?;
+    entry(&mut x, "simulated")?;
     strip
         .draw(&PathElement::new(vec![(x, y), (x + 26, y)], STABLE))
         .map_err(drawing)?;
-    entry(&mut x, "continued, stable")?;
+    entry(&mut x, "branch, stable")?;
     for i in 0..3 {
         let x0 = x + 9 * i;
         strip
             .draw(&PathElement::new(vec![(x0, y), (x0 + 5, y)], UNSTABLE))
             .map_err(drawing)?;
     }
-    entry(&mut x, "continued, unstable")?;
+    entry(&mut x, "unstable")?;
     for (kind, name, color, shape) in MARKERS {
         let found = d
             .branches

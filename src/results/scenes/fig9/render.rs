@@ -3,6 +3,7 @@
 
 use super::{Fig9Data, ScanPoint};
 use crate::results::render::{
+    tick,
     power_of_ten,
     cell, draw_legend, drawing, markdown_table, palette, solid_key, styled_mesh, RenderError,
     CAPTION_FONT, LABEL_FONT, WIDTH,
@@ -155,7 +156,7 @@ fn scan_panel<DB: DrawingBackend>(
             } else if integer_scan && x.fract().abs() < 1e-9 {
                 format!("{x:.0}")
             } else {
-                format!("{x:.1}")
+                tick(&((x * 10.0).round() / 10.0))
             }
         })
         .y_labels((top as usize / 2 + 1).min(11))
@@ -255,7 +256,8 @@ pub fn scans_table(d: &Fig9Data) -> String {
         for s in scan {
             rows.push(vec![
                 name.to_string(),
-                cell(s.value, 3),
+                // N is a count
+                if name == "$N$" { format!("{:.0}", s.value) } else { cell(s.value, 3) },
                 s.count.kind.to_string(),
                 s.count.intervals.map_or("—".into(), super::per_period),
                 s.count.maxima.map_or("—".into(), super::per_period),
@@ -268,8 +270,8 @@ pub fn scans_table(d: &Fig9Data) -> String {
             "scanned",
             "value",
             "orbit",
-            "contact intervals per period",
-            "penetration maxima per period",
+            "contact intervals per forcing period (mean over the orbit)",
+            "penetration maxima per forcing period (mean over the orbit)",
             "periods discarded",
         ],
         &rows,

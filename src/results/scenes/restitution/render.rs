@@ -3,6 +3,7 @@
 
 use super::RestitutionData;
 use crate::results::render::{
+    tick,
     cell, draw_legend, drawing, log_log_mesh, markdown_table, palette, solid_key, RenderError,
     CAPTION_FONT, WIDTH,
 };
@@ -38,7 +39,7 @@ pub fn plot(d: &RestitutionData) -> Result<String, RenderError> {
                     c.stroke_width(2),
                 ))
                 .map_err(drawing)?
-                .label(format!("ω = {}(β₁⁻)², slope {:.2}", n.omega_over_w1, n.rate.0))
+                .label(format!("ω = {}(β₁⁻)², slope {}", n.omega_over_w1, tick(&((n.rate.0 * 100.0).round() / 100.0))))
                 .legend(solid_key(c.stroke_width(2)));
             chart
                 .draw_series(ks.iter().zip(&n.gap).map(|(&k, &g)| Circle::new((k, g), 4, c.filled())))

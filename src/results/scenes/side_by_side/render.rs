@@ -391,7 +391,11 @@ pub fn outcomes(d: &SideBySideData) -> String {
                     sig(first.error, 1)
                 )
             } else {
-                first.outcome.clone()
+                // Siconos reports a failure of its event-driven integrator only as a bare
+                // C++ exception
+                first
+                    .outcome
+                    .replace("Exception: std::exception", "a C++ exception without a message")
             };
             rows.push(vec![
                 short(p),
