@@ -579,6 +579,28 @@ fn item_1_a_stiff_stop_costs_bounded_work_or_is_refused_with_the_reason() {
     let sim = stiff_stop(20, 1e12);
     let end = sim.run(&DVector::zeros(40), 1, &mut ()).unwrap();
     assert!(end.stats.evaluations < 100_000, "{:?}", end.stats);
+    // With a gap, the tip bounces, settles on the stop and leaves it so slowly that g
+    // sat inside its round-off band for ~1e-5 time units at ġ ~ 1e-12: 4e7 h_min steps
+    // in one contact segment (a minute per period at N = 20, 1e12 k₁). Where g is proven
+    // increasing (or convex after being certainly negative) one evaluation decides a
+    // whole interval now.
+    for (modes, k, gap) in [(20, 1e12, 0.003), (15, 1e12, 0.006), (10, 1e11, 0.006)] {
+        let forced = Forced {
+            modes,
+            k_over_k1: k,
+            zeta1: 0.01,
+            omega_over_w1: 2.0,
+            gap,
+            printed_eq37_amplitude: false,
+        };
+        let sim = Simulator::new(forced.model().unwrap()).unwrap();
+        let end = sim.run(&DVector::zeros(2 * modes), 1, &mut ()).unwrap();
+        assert!(
+            end.stats.steps < 1_000_000,
+            "N = {modes}, k = {k:e}, d₀ = {gap}: {:?}",
+            end.stats
+        );
+    }
     // N = 1 at 1e10 k₁: the tip chatters on the stop with free flights of ~1e-8 whose dip
     // is below round-off; every entry must still move into the stop (this broke when the
     // bracket of such a flight started at a noisy "negative" point on its falling side)

@@ -83,6 +83,7 @@ fn search<S: Signal + ?Sized>(
     // certainly negative yet.
     let mut last_negative = (p.g < 0.0).then_some((from, p.g));
     let mut inside = p.g < -noise(&p);
+    let mut last_step: f64 = 0.0;
     while s < s_max {
         stats.steps += 1;
         if target.sign < 0.0 {
@@ -127,20 +128,47 @@ fn search<S: Signal + ?Sized>(
             },
             ..p
         };
-        let h = certified_step(&certify, s_max - s)
-            .max(h_min)
-            .min(s_max - s);
+        let certified = certified_step(&certify, s_max - s);
+        let h = certified.max(h_min).min(s_max - s);
         // Monotone probe: if ġ > 0 throughout [s, s + 2h], one evaluation at s + 2h
         // decides the (unique) root there.
         let probe = (2.0 * h).min(s_max - s);
-        let step = if p.gd - p.bound2 * probe > 0.0 && probe > h {
+        let mut step = if p.gd - p.bound2 * probe > 0.0 && probe > h {
             probe
         } else {
             h
         };
+        // Shape step, where the certificate alone would take the h_min floor (g within
+        // its uncertainty of zero): on an interval where g is certainly increasing
+        // (ġ > 0), or, once g has been certainly negative, certainly convex (g̈ > 0), g has
+        // no interior maximum — neither a touch nor a crossing that turns back — and at
+        // most one root, so one evaluation at its end decides. This crosses the band of a
+        // slow release from a stiff stop (ġ ~ 1e-12 against a band of 1e-17 at 1e11k₁:
+        // 4e7 h_min steps for one release) in a few dozen steps. In the start band only
+        // from a point with g < 0, which brackets the root with the step's end (from
+        // g ≥ 0 the crossing would be put at the step's end), and by monotonicity only (a
+        // dip below −noise skipped over would leave `inside` unset). The step at most
+        // doubles the last one, so a crossing is bracketed about as tightly as by the
+        // certified steps (the polish accepts any point within round-off of zero: over a
+        // long bracket that may be a dip's flat bottom rather than the rising root).
+        let shape = if certified < h_min && (inside || p.g < 0.0) {
+            shape_horizon(&p, inside)
+                .min(2.0 * last_step.max(h))
+                .min(s_max - s)
+        } else {
+            0.0
+        };
+        let shaped = shape > step;
+        if shaped {
+            step = shape;
+        }
         let next = sig.local(s + step, target);
         stats.evaluations += 1;
-        if next.g >= 0.0 && (inside || next.g > noise(&next)) {
+        // A shape step that lands within the band of zero (touches reported) decides
+        // nothing yet: as after the short steps that approach the band, the top of g is
+        // sought from there (a touch if it stays within the band, else a crossing).
+        let undecided = shaped && touches && inside && next.g <= noise(&next);
+        if next.g >= 0.0 && (inside || next.g > noise(&next)) && !undecided {
             // A root in (s, s + step]: unique if the probe's monotonicity held; otherwise
             // only reachable at the h_min floor or at a tangency within round-off. From the
             // start band, whose negative values are round-off, the bracket starts at the
@@ -188,6 +216,7 @@ fn search<S: Signal + ?Sized>(
             return Some(Found::Touch(top));
         }
         s += step;
+        last_step = step;
         p = next;
         if p.g < 0.0 {
             last_negative = Some((s, p.g));
@@ -214,6 +243,32 @@ pub fn certified_step(p: &Local, limit: f64) -> f64 {
     // grow by doubling while the cubic bound stays negative on all of [0, 2h]
     while h < limit && cubic_max(g, gd, p.gdd, p.bound3, (2.0 * h).min(limit)) < 0.0 {
         h = (2.0 * h).min(limit);
+    }
+    h
+}
+
+/// The longest h such that, on [s, s + h], ġ > 0 is proven, or (with `convex`) g̈ > 0,
+/// from the lower bounds ġ − M₂τ, ġ + g̈τ − M₃τ²/2 and g̈ − M₃τ, with ġ and g̈ first
+/// lowered by their round-off (8ε times the magnitudes of their terms); 0 if neither is.
+fn shape_horizon(p: &Local, convex: bool) -> f64 {
+    let gd = p.gd - 8.0 * f64::EPSILON * p.scale1;
+    let gdd = p.gdd - 8.0 * f64::EPSILON * p.bound2;
+    let (m2, m3) = (p.bound2, p.bound3);
+    let mut h: f64 = 0.0;
+    if gd > 0.0 {
+        // ġ − M₂τ > 0
+        h = h.max(if m2 > 0.0 { gd / m2 } else { f64::INFINITY });
+        // ġ + g̈τ − M₃τ²/2 > 0 up to its positive root
+        h = h.max(if m3 > 0.0 {
+            (gdd + (gdd * gdd + 2.0 * m3 * gd).sqrt()) / m3
+        } else if gdd >= 0.0 {
+            f64::INFINITY
+        } else {
+            -gd / gdd
+        });
+    }
+    if convex && gdd > 0.0 {
+        h = h.max(if m3 > 0.0 { gdd / m3 } else { f64::INFINITY });
     }
     h
 }

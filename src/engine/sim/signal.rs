@@ -123,6 +123,8 @@ pub struct Local {
     pub bound3: f64,
     /// Σ of the magnitudes of g's terms: its round-off scale.
     pub scale: f64,
+    /// Σ of the magnitudes of ġ's terms: ġ's round-off scale (g̈'s is at most `bound2`).
+    pub scale1: f64,
     /// An absolute error floor of g beyond its round-off: the error of the segment's
     /// modal representation of its start state (see [`TipSignal::with_floor`]).
     pub floor: f64,
@@ -310,6 +312,7 @@ impl Signal for TipSignal {
         let amp = self.forced_amplitude;
         let (mut b2, mut b3) = (w * w * amp, w * w * w * amp);
         let mut scale = amp + self.constant.abs() + target.level.abs();
+        let mut scale1 = w * amp;
         // a decayed term's magnitude is ≤ negligible; twice that absorbs the rounding of
         // its `negligible_from`
         let tiny = 2.0 * self.negligible;
@@ -335,6 +338,7 @@ impl Signal for TipSignal {
             b2 += mag * l2;
             b3 += mag * l2 * t.lambda_abs;
             scale += mag;
+            scale1 += mag * t.lambda_abs;
         }
         for t in &self.reals {
             let l2 = t.lambda * t.lambda;
@@ -350,6 +354,7 @@ impl Signal for TipSignal {
             b2 += mag * l2;
             b3 += mag * l2 * t.lambda.abs();
             scale += mag;
+            scale1 += mag * t.lambda.abs();
         }
         for t in &self.blocks {
             let z = t.block.apply(s, t.y);
@@ -361,6 +366,7 @@ impl Signal for TipSignal {
             b2 += t.bound[2] * size;
             b3 += t.bound[3] * size;
             scale += t.bound[0] * size;
+            scale1 += t.bound[1] * size;
         }
         Local {
             g: target.sign * (d - target.level),
@@ -369,6 +375,7 @@ impl Signal for TipSignal {
             bound2: b2,
             bound3: b3,
             scale,
+            scale1,
             floor: self.floor,
         }
     }

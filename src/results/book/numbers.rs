@@ -205,7 +205,11 @@ mod tests {
         assert_eq!(p.expand("{{time s}}").unwrap(), "12 s");
         assert_eq!(p.expand("a {{n s/x}} b").unwrap(), "a 1.235 b");
         // (1.23456 to 4 figures: the rounding, 4.4e-4, is larger than 3e-4 and is added)
-        assert_eq!(p.expand("{{pm s/x}}").unwrap(), "1.235 ± 8 × 10⁻⁴ T");
+        // (the power of ten is not broken at its ×)
+        assert_eq!(
+            p.expand("{{pm s/x}}").unwrap(),
+            "1.235 ± 8\u{a0}×\u{a0}10⁻⁴ T"
+        );
         assert_eq!(
             p.expand("{{n s/n}} {{#include x}}").unwrap(),
             "7 {{#include x}}"
