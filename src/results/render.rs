@@ -180,62 +180,56 @@ fn e_notation_at(chars: &[char], i: usize) -> Option<(String, usize)> {
 /// ([`e_notation_at`]) and a minus sign (−, not a hyphen) before a negative number. Code
 /// (`…`) and TeX (`$…$`) are left alone.
 pub fn readable_numbers(text: &str) -> String {
-    let chars: Vec<char> = text.chars().collect();
-    let mut out = String::with_capacity(text.len() + 16);
-    let mut in_code = false;
-    let mut i = 0;
-    while i < chars.len() {
-        let c = chars[i];
-        if c == '`' || c == '$' {
-            in_code = !in_code;
-        }
-        if !in_code {
-            if let Some((power, span)) = e_notation_at(&chars, i) {
-                out.push_str(&power);
-                i += span;
-                continue;
-            }
-            // a hyphen that starts a number (after a space, a bracket or a sign of relation)
-            let starts =
-                i == 0 || matches!(chars[i - 1], ' ' | '(' | '[' | '=' | ',' | '/' | '≈' | '~');
-            if c == '-' && starts && chars.get(i + 1).is_some_and(|d| d.is_ascii_digit()) {
-                out.push('−');
-                i += 1;
-                continue;
-            }
-        }
-        out.push(c);
-        i += 1;
-    }
-    // a power of ten is not broken across lines at its ×
-    out.replace(" × 10", "\u{a0}×\u{a0}10")
+    rewrite(text, false)
 }
 
-/// Text for a page or a table with the paper's subscripts as HTML: `r_E`, `A_free`, `β_N`, `[R]_N`
-/// and `ωA_free` would show their underscores. A subscript is a single-letter symbol (or
-/// `]`) followed by `_` and letters or digits; identifiers such as `impact_velocity_1` and
-/// anything inside backticks are left alone. Numbers are written as elsewhere in the book
-/// ([`readable_numbers`]).
+/// Text for a page or a table: numbers as [`readable_numbers`] writes them, and the
+/// paper's subscripts as HTML — `r_E`, `A_free`, `β_N`, `[R]_N` and `ωA_free` would show
+/// their underscores. A subscript is a single-letter symbol (or `]`) followed by `_` and
+/// letters or digits; identifiers such as `impact_velocity_1` and anything inside
+/// backticks are left alone.
 pub fn readable_text(text: &str) -> String {
-    let text = readable_numbers(text);
+    rewrite(text, true)
+}
+
+/// The one pass of [`readable_numbers`] and (with `subscripts`) [`readable_text`].
+fn rewrite(text: &str, subscripts: bool) -> String {
     let chars: Vec<char> = text.chars().collect();
     let mut out = String::with_capacity(text.len() + 16);
     let mut in_code = false;
     let mut i = 0;
     while i < chars.len() {
         let c = chars[i];
-        // code and TeX (`$…$`, converted later to MathML) keep their underscores
+        // code and TeX (`$…$`, converted later to MathML) stay as written
         if c == '`' || c == '$' {
             in_code = !in_code;
         }
-        let symbol = c.is_alphabetic() || c == ']';
+        if in_code {
+            out.push(c);
+            i += 1;
+            continue;
+        }
+        if let Some((power, span)) = e_notation_at(&chars, i) {
+            out.push_str(&power);
+            i += span;
+            continue;
+        }
+        // a hyphen that starts a number (after a space, a bracket or a sign of relation)
+        let starts =
+            i == 0 || matches!(chars[i - 1], ' ' | '(' | '[' | '=' | ',' | '/' | '≈' | '~');
+        if c == '-' && starts && chars.get(i + 1).is_some_and(|d| d.is_ascii_digit()) {
+            out.push('−');
+            i += 1;
+            continue;
+        }
         // the symbol stands alone: nothing alphanumeric before it, except ω in ωA_free
+        let symbol = c.is_alphabetic() || c == ']';
         let alone = c == ']' || i == 0 || !chars[i - 1].is_alphanumeric() || chars[i - 1] == 'ω';
         let run = chars[(i + 2).min(chars.len())..]
             .iter()
             .take_while(|ch| ch.is_ascii_alphanumeric())
             .count();
-        if !in_code && symbol && alone && chars.get(i + 1) == Some(&'_') && run > 0 {
+        if subscripts && symbol && alone && chars.get(i + 1) == Some(&'_') && run > 0 {
             let sub: String = chars[i + 2..i + 2 + run].iter().collect();
             out.push(c);
             out.push_str(&format!("<sub>{sub}</sub>"));
@@ -245,7 +239,8 @@ pub fn readable_text(text: &str) -> String {
         out.push(c);
         i += 1;
     }
-    out
+    // a power of ten is not broken across lines at its ×
+    out.replace(" × 10", "\u{a0}×\u{a0}10")
 }
 
 /// A tick label on a logarithmic axis: a power of ten as 10ⁿ (1 and 10 as themselves),
