@@ -240,7 +240,10 @@ impl Scene for EnergeticMap {
         for (i, &kk) in d.params.k_over_k1.iter().enumerate() {
             let n = d.points[i * d.params.omega_over_w1.len()].modes;
             if last != Some(n) {
-                runs.push(format!("{n} from {}k₁", crate::base::report::pretty(kk, 3)));
+                // as the atlas writes it: 10k₁, 1000k₁, 5623k₁
+                let k = crate::base::report::pretty(kk, 3);
+                let k = if k.contains('.') { k.trim_end_matches('0').trim_end_matches('.').to_string() } else { k };
+                runs.push(format!("{n} from {k}k₁"));
                 last = Some(n);
             }
         }

@@ -174,7 +174,15 @@ pub fn table(d: &SpectrumData) -> String {
     }
     for (r, c) in &d.finite_k {
         rows.push(vec![
-            format!("k = {} k₁", cell(*r, 3)),
+            // the stop stiffnesses are round numbers: 1, 100, 1e6 (10⁶ in the table)
+            format!("k = {} k₁", {
+                let c = cell(*r, 3);
+                if c.contains('.') && !c.contains('e') {
+                    c.trim_end_matches('0').trim_end_matches('.').to_string()
+                } else {
+                    c
+                }
+            }),
             c.i.to_string(),
             cell(c.ours, 16),
             cell(c.golden, 16),

@@ -315,8 +315,8 @@ pub fn scaling_table(d: &WorkPrecisionData) -> String {
     let from = super::scaling::fit_from(&modes);
     let n = |q: &super::scaling::ScalingPoint| q.modes as f64;
     let k = |q: &super::scaling::ScalingPoint| q.k_over_k1;
-    format!(
-        "{table}\nThe wall time's exponents on this machine (least-squares slopes on log–log \
+    let sentence = format!(
+        "The wall time's exponents on this machine (least-squares slopes on log–log \
          axes, ± their standard error; along N from N = {} on): per period {} in N, per orbit \
          {} in N; per period {} in k, per orbit {} in k.\n",
         modes.get(from).copied().unwrap_or(0),
@@ -324,5 +324,6 @@ pub fn scaling_table(d: &WorkPrecisionData) -> String {
         fit(&sc.along_modes, &n, true, from),
         fit(&sc.along_stiffness, &k, false, 0),
         fit(&sc.along_stiffness, &k, true, 0),
-    )
+    );
+    format!("{table}\n{}", crate::results::render::readable_text(&sentence))
 }
