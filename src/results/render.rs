@@ -177,7 +177,7 @@ fn e_notation_at(chars: &[char], i: usize) -> Option<(String, usize)> {
 }
 
 /// Numbers in text as the book prints them: e-notation as powers of ten
-/// ([`e_notation_at`]) and a minus sign (−, not a hyphen) before a negative number. Code
+/// (`e_notation_at`) and a minus sign (−, not a hyphen) before a negative number. Code
 /// (`…`) and TeX (`$…$`) are left alone.
 pub fn readable_numbers(text: &str) -> String {
     rewrite(text, false)

@@ -299,6 +299,12 @@ pub fn headline(d: &SideBySideData) -> String {
     )
 }
 
+/// A run's outcome as a reader should see it: Siconos reports a failure of its
+/// event-driven integrator only as a bare C++ exception.
+fn in_words(outcome: &str) -> String {
+    outcome.replace("Exception: std::exception", "a C++ exception without a message")
+}
+
 /// The machine, the date and the versions.
 pub fn setup(d: &SideBySideData) -> String {
     let mut rows = vec![
@@ -391,11 +397,7 @@ pub fn outcomes(d: &SideBySideData) -> String {
                     sig(first.error, 1)
                 )
             } else {
-                // Siconos reports a failure of its event-driven integrator only as a bare
-                // C++ exception
-                first
-                    .outcome
-                    .replace("Exception: std::exception", "a C++ exception without a message")
+                in_words(&first.outcome)
             };
             rows.push(vec![
                 short(p),
@@ -430,7 +432,7 @@ fn orbit_rows(o: &OrbitData) -> Vec<Vec<String>> {
             sig(Some(q.rtol), 1),
             q.newton_steps.map_or("—".into(), |n| n.to_string()),
             q.periods.map_or("—".into(), |n| n.to_string()),
-            q.seconds.map_or(q.outcome.clone(), |s| {
+            q.seconds.map_or(in_words(&q.outcome), |s| {
                 format!("{} ({:.0}×)", time(s), s / o.ours_seconds)
             }),
             sig(q.state_error, 1),
@@ -480,7 +482,7 @@ pub fn runs(d: &SideBySideData) -> String {
                     q.seconds.map_or("—".into(), time),
                     q.events.map_or("—".into(), |n| n.to_string()),
                     sig(q.error, 2),
-                    q.outcome.clone(),
+                    in_words(&q.outcome),
                 ]);
             }
         }
