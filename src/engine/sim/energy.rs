@@ -2,7 +2,7 @@
 //! of stored energy (kinetic + modal strain + stop), each segment's integrals in closed
 //! form. It needs no reference solution and catches most integrator and event bugs.
 
-use crate::base::numerics::{exp_integral, polar};
+use crate::base::numerics::{exp_integral, exprel_series, polar, EXPREL_SERIES_BELOW};
 use crate::engine::flow::{decay, Block2, RegionFlow, TermKind};
 use crate::model::galerkin::GalerkinModel;
 use nalgebra::{DMatrix, DVector};
@@ -78,12 +78,31 @@ pub fn stored_energy(model: &GalerkinModel, x: &DVector<f64>) -> f64 {
 pub struct EnergyTables {
     /// μ_m.
     exponents: Vec<Complex64>,
-    /// G_mn = p_mᵀCp_n.
-    gram: DMatrix<Complex64>,
+    /// The dissipation's terms, one per pair of conjugate classes (see [`DissipationTerm`]).
+    dissipation: Vec<DissipationTerm>,
     /// fᵀp_m.
     forcing: Vec<Complex64>,
     /// The blocks' tables.
     blocks: Vec<BlockTables>,
+}
+
+/// One term c_a c_y G_ay ∫e^{(μ_a+μ_y)s} of the dissipation, with what does not depend on
+/// the segment. The exponentials come in conjugate classes ({m, m̄}, or one real m) and G is
+/// symmetric, so of the M² terms Σ_ab c_a c_b G_ab ∫e^{(μ_a+μ_b)s} it suffices to take, for
+/// each pair of classes A ≤ B with representative a of A, the terms (a, y) for y in B: the
+/// others are these or their conjugates. `weight` is (2 if A ≠ B) × (2 if A is a pair), and
+/// the dissipation is Σ weight · Re(term): M²/4 terms.
+#[derive(Debug, Clone, Copy)]
+struct DissipationTerm {
+    a: usize,
+    y: usize,
+    weight: f64,
+    /// μ_a + μ_y, its reciprocal (0 when μ = 0: then the series is always used) and |μ|².
+    mu: Complex64,
+    inverse_mu: Complex64,
+    mu_norm2: f64,
+    /// G_ay = p_aᵀCp_y.
+    gram: Complex64,
 }
 
 /// A block's tables: B, its slot, and its Gram products with the exponentials and with the
@@ -127,6 +146,8 @@ impl EnergyTables {
             |col: &dyn Fn(usize) -> Complex64| -> Vec<Complex64> { (0..n).map(col).collect() };
         let mut p: Vec<Vec<Complex64>> = Vec::new();
         let mut exponents = Vec::new();
+        // conjugate classes: (representative, its conjugate when a pair)
+        let mut classes: Vec<(usize, Option<usize>)> = Vec::new();
         let mut block_parts: Vec<(Block2, usize, [Vec<f64>; 2])> = Vec::new();
         for t in flow.terms() {
             if let TermKind::Block { block, columns, .. } = t.kind {
@@ -138,6 +159,9 @@ impl EnergyTables {
             if t.is_pair() {
                 p.push(v.iter().map(|z| z.conj()).collect());
                 exponents.push(t.lambda.conj());
+                classes.push((p.len(), Some(p.len() - 1)));
+            } else {
+                classes.push((p.len(), None));
             }
             p.push(v);
             exponents.push(t.lambda);
@@ -146,6 +170,7 @@ impl EnergyTables {
             let x = velocity(&|i| flow.forced()[n + i]);
             p.push(x.iter().map(|z| z.conj()).collect());
             exponents.push(Complex64::new(0.0, -flow.omega()));
+            classes.push((p.len(), Some(p.len() - 1)));
             p.push(x);
             exponents.push(Complex64::new(0.0, flow.omega()));
         }
@@ -153,7 +178,30 @@ impl EnergyTables {
         let pm = faer::Mat::<Complex64>::from_fn(n, p.len(), |i, m| p[m][i]);
         let cp = faer::Mat::<Complex64>::from_fn(n, p.len(), |i, m| p[m][i] * c[i]);
         let g = pm.transpose() * &cp;
-        let gram = DMatrix::from_fn(p.len(), p.len(), |a, b| g[(a, b)]);
+        let mut dissipation = Vec::with_capacity(classes.len() * (classes.len() + 1));
+        for (i, &(a, a_conj)) in classes.iter().enumerate() {
+            for &(b, b_conj) in &classes[i..] {
+                let weight =
+                    if a == b { 1.0 } else { 2.0 } * if a_conj.is_some() { 2.0 } else { 1.0 };
+                for y in std::iter::once(b).chain(b_conj) {
+                    let mu = exponents[a] + exponents[y];
+                    let inverse_mu = if mu == Complex64::new(0.0, 0.0) {
+                        mu
+                    } else {
+                        1.0 / mu
+                    };
+                    dissipation.push(DissipationTerm {
+                        a,
+                        y,
+                        weight,
+                        mu,
+                        inverse_mu,
+                        mu_norm2: mu.norm_sqr(),
+                        gram: g[(a, y)],
+                    });
+                }
+            }
+        }
         let forcing = p
             .iter()
             .map(|pm| (0..n).map(|i| pm[i] * f[i]).sum())
@@ -185,7 +233,7 @@ impl EnergyTables {
             .collect();
         Self {
             exponents,
-            gram,
+            dissipation,
             forcing,
             blocks,
         }
@@ -264,19 +312,18 @@ pub fn segment_energy(
         .iter()
         .map(|mu| polar(decay(mu.re * s_end), mu.im * s_end))
         .collect();
-    let mut dissipated = Complex64::new(0.0, 0.0);
-    for (a, (&ca, &ma)) in coefficients.iter().zip(&tables.exponents).enumerate() {
-        let mut row = Complex64::new(0.0, 0.0);
-        for b in a..coefficients.len() {
-            let weight = if a == b { 1.0 } else { 2.0 };
-            let mu = ma + tables.exponents[b];
-            row += coefficients[b]
-                * tables.gram[(a, b)]
-                * exp_integral(mu, s_end, growth[a] * growth[b])
-                * weight;
-        }
-        dissipated += ca * row;
+    let mut dissipated = 0.0;
+    let s2 = s_end * s_end;
+    for t in &tables.dissipation {
+        let z2 = t.mu_norm2 * s2;
+        let integral = if z2 < EXPREL_SERIES_BELOW {
+            exprel_series(t.mu * s_end, z2) * s_end
+        } else {
+            (growth[t.a] * growth[t.y] - 1.0) * t.inverse_mu
+        };
+        dissipated += t.weight * (coefficients[t.a] * coefficients[t.y] * t.gram * integral).re;
     }
+    let mut dissipated = Complex64::new(dissipated, 0.0);
     let mut work = Complex64::new(0.0, 0.0);
     if omega > 0.0 {
         let iw = Complex64::new(0.0, omega);

@@ -232,7 +232,7 @@ fn compliant(args: &SimulateArgs, setup: Setup, bars: &Bars) -> Result<Report, E
         task: task.as_ref(),
         done: 0,
     };
-    // the transient (the energy budget costs about as much as the flow: on request only)
+    // the transient, with the energy budget unless --no-energy
     let budgeted = || (!args.no_energy).then(Energy::default);
     let mut energy = budgeted();
     let end = sim.run_from(&x, clock, args.periods, &mut (&mut energy, &mut ticker))?;
