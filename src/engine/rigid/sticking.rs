@@ -201,23 +201,10 @@ impl Sticking {
     /// L(s) from x at phase θ as an exponential sum (for the certified search).
     fn release_signal(&self, x: &DVector<f64>, phase: f64) -> TipSignal {
         let y = self.homogeneous(x, phase);
-        let terms = self.modes.iter().zip(&y).map(|(m, y)| {
-            let r = [-m.release[0], -m.release[1]];
-            if m.block.mu < 0.0 {
-                Term::Block {
-                    block: m.block,
-                    tip: r,
-                    y: *y,
-                }
-            } else {
-                // undamped: Re((r₀ + iνr₁)(y₀ − iy₁/ν) e^{iνs})
-                let nu = (-m.block.q).sqrt();
-                Term::Pair {
-                    a: Complex64::new(r[0], nu * r[1]) * Complex64::new(y[0], -y[1] / nu),
-                    lambda: Complex64::new(0.0, nu),
-                }
-            }
-        });
+        let mut terms = Vec::with_capacity(2 * self.modes.len());
+        for (m, y) in self.modes.iter().zip(&y) {
+            mode_terms(m.block, [-m.release[0], -m.release[1]], *y, &mut terms);
+        }
         TipSignal::new(
             self.omega,
             phase,
@@ -256,5 +243,57 @@ impl Sticking {
         );
         let state = self.state(x, phase, release.unwrap_or(horizon));
         (release, state)
+    }
+}
+
+/// Two eigenvalues of a constrained mode count as one nearly critical pair, kept as a block,
+/// within this distance relative to the larger (as the free flow's nearly defective pairs,
+/// `flow::NEAR_DEFECTIVE_SEPARATION`): further apart, the split into eigenvalues is
+/// conditioned like 1/separation ≤ 2·(larger magnitude)/(their distance).
+const NEAR_CRITICAL_SEPARATION: f64 = 0.5;
+
+/// r·e^{Bs}y of one constrained mode (B = [[0, 1], [−κ, −c]]) as terms of the certified
+/// search: a complex pair Re(a e^{λs}) when under-damped, two real exponentials when
+/// over-damped, and a block only near critical damping. The split matters for the search's
+/// bounds: a block's are ‖(Bᵀ)ᵏr‖ times the size of y, so an over-damped mode (at N = 30
+/// a fast rate ~γκ ~ 4e5 beside a slow one ~1/γ ~ 180) would bound g̈ by the fast rate's
+/// square long after that part has decayed, and the release search took steps ~10⁻⁵ of
+/// what the signal allows (N = 50: ~30 s for two periods).
+fn mode_terms(block: Block2, r: [f64; 2], y: [f64; 2], out: &mut Vec<Term>) {
+    let (sigma, q) = (block.mu, block.q);
+    let root = q.abs().sqrt();
+    // the larger |λ|: √κ for a pair (|λ|² = κ), |σ| + √q for real ones
+    let scale = if q < 0.0 {
+        (sigma * sigma - q).sqrt()
+    } else {
+        sigma.abs() + root
+    };
+    if 2.0 * root < NEAR_CRITICAL_SEPARATION * scale {
+        out.push(Term::Block { block, tip: r, y });
+    } else if q < 0.0 {
+        // ζ = Re(Z e^{λs}), λ = σ + iν: Re Z = y₀ and Re(λZ) = y₁ give Z = y₀ − i(y₁ − σy₀)/ν
+        let lambda = Complex64::new(sigma, root);
+        let z = Complex64::new(y[0], -(y[1] - sigma * y[0]) / root);
+        out.push(Term::Pair {
+            a: (r[0] + r[1] * lambda) * z,
+            lambda,
+        });
+    } else {
+        // λ_fast = σ − √q without cancellation (σ < 0); λ_slow = κ/λ_fast (their product
+        // is κ = det B); ζ = A e^{λ_slow s} + B e^{λ_fast s} with A + B = y₀,
+        // λ_slow A + λ_fast B = y₁
+        let fast = sigma - root;
+        let det = block.b[0][0] * block.b[1][1] - block.b[0][1] * block.b[1][0];
+        let slow = det / fast;
+        let a = (y[1] - fast * y[0]) / (slow - fast);
+        let b = (slow * y[0] - y[1]) / (slow - fast);
+        out.push(Term::Real {
+            a: (r[0] + r[1] * slow) * a,
+            lambda: slow,
+        });
+        out.push(Term::Real {
+            a: (r[0] + r[1] * fast) * b,
+            lambda: fast,
+        });
     }
 }
