@@ -483,3 +483,37 @@ fn item_15_an_imbalance_above_its_bound_is_flagged() {
     assert_eq!(code, 0, "{err}");
     assert!(out.contains("ABOVE its round-off bound"), "{out}");
 }
+
+#[test]
+fn a_rigid_run_that_stops_before_its_window_is_refused_not_empty() {
+    // From rest at d₀ = 0 the tip sits on a rigid stop the forcing pushes it into: under a
+    // law without a sticking limit the impacts accumulate at t = 0. That run used to exit 0
+    // with an empty window ("orbit: not tested (needs at least 2 recorded periods)")
+    for periods in ["0", "3"] {
+        let (code, out, err) = cantilever(&[
+            "simulate",
+            "--model",
+            "rigid",
+            "--law",
+            "stiffness-limit",
+            "--modes",
+            "3",
+            "--gap",
+            "0",
+            "--zeta1",
+            "0.01",
+            "--omega",
+            "2",
+            "--periods",
+            periods,
+            "--record",
+            "2",
+            "--json",
+        ]);
+        assert_eq!(code, 1, "{out:.300}");
+        assert!(
+            err.contains("nothing recorded") && err.contains("--law impulse-response"),
+            "{err}"
+        );
+    }
+}

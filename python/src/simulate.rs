@@ -381,13 +381,28 @@ fn rigid(
     }
     let (period_m, residual, max_period_searched) = period_search(args, &strobe_states);
     let impacts = |from: i64| events.iter().filter(|e| e.cycle >= from).count() as u64;
+    let chatter = "impacts accumulate (chatter), and this law changes the velocity orthogonal to the tip at every impact, so the chatter has no sticking limit (use law impulse-response)";
     let outcome_text = match outcome {
         Outcome::Completed => "completed".to_string(),
-        Outcome::Chatter(t) => format!(
-            "stopped at t = {t}: impacts accumulate (chatter), and this law changes the velocity orthogonal to the tip at every impact, so the chatter has no sticking limit (use law impulse-response)"
-        ),
+        Outcome::Chatter(t) => format!("stopped at t = {t}: {chatter}"),
         Outcome::ImpactLimit => "stopped: more impacts than the policy's limit".to_string(),
     };
+    // a run that stopped before its window began recorded nothing: that is no result
+    let window_start = args.periods as f64 * period;
+    if outcome != Outcome::Completed && (done < args.periods || final_clock.time() <= window_start)
+    {
+        return Err(Error::Unsupported(match outcome {
+            Outcome::Chatter(t) if t < window_start => format!(
+                "nothing recorded: the run stopped at t = {t}, before its window (from t = {window_start}): {chatter}"
+            ),
+            Outcome::Chatter(t) => format!(
+                "nothing recorded: the run stopped at t = {t}, as its window began: {chatter}"
+            ),
+            _ => format!(
+                "nothing recorded: the run stopped before its window (from t = {window_start}): more impacts than the policy's limit"
+            ),
+        }));
+    }
     Ok(Report {
         impacts_n: period_m.map(|m| impacts(cycle - m as i64)),
         contacts_in_window: impacts(cycle - args.record as i64),

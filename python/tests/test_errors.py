@@ -121,6 +121,19 @@ def test_library_messages_are_passed_on_verbatim(cli: Cli) -> None:
         ic.find_orbit(rigid(), restitution=True)
 
 
+def test_a_rigid_run_that_stops_before_its_window_is_an_error(cli: Cli) -> None:
+    # from rest on the stop, a law without a sticking limit chatters at t = 0
+    with pytest.raises(ValueError) as e:
+        ic.simulate(rigid(law="stiffness-limit", gap=0.0), 0, 2)
+    p = cli.run("simulate", *flags("--model", "rigid", "--law", "stiffness-limit",
+                                   "--restitution", "0.8", "--gap", "0", "--periods", "0",
+                                   "--record", "2"))
+    assert p.returncode == 1, (p.stdout, p.stderr)
+    expected = p.stderr.strip().removeprefix("error: ")
+    assert expected.startswith("unsupported: nothing recorded"), expected
+    assert str(e.value) == expected.replace("--law", "law")
+
+
 HOSTILE = Path(__file__).with_name("hostile.py")
 
 

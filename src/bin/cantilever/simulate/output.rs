@@ -308,7 +308,12 @@ pub fn to_text(r: &Report) -> String {
             r.max_period_searched, r.args.record, r.contacts_in_window
         )),
         (None, None) => s.push_str(&format!(
-            "orbit: not tested (needs at least 2 recorded periods); {} {what} in the window\n",
+            "orbit: not tested ({}); {} {what} in the window\n",
+            if r.outcome == "completed" {
+                "needs at least 2 recorded periods"
+            } else {
+                "the run stopped before 2 periods were recorded"
+            },
             r.contacts_in_window
         )),
     }
