@@ -268,6 +268,11 @@ impl Strobe {
     }
 
     fn push(&mut self, cycle: i64, x: &DVector<f64>) {
+        // a run continued from where the last one ended begins at the boundary that run
+        // ended on: one sample per cycle
+        if self.samples.last().is_some_and(|(c, _)| *c == cycle) {
+            return;
+        }
         if self.keep_last > 0 && self.samples.len() >= self.keep_last {
             let excess = self.samples.len() + 1 - self.keep_last;
             self.samples.drain(..excess);

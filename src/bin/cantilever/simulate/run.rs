@@ -249,41 +249,49 @@ fn compliant(args: &SimulateArgs, setup: Setup, bars: &Bars) -> Result<Report, E
     };
     // the period search looks back at most max_m periods from the last
     let keep = super::period_search_depth(args) + 1;
-    let (mut energy, mut strobe) = (budgeted(), Strobe::keeping_last(keep));
-    let end = if args.dense.is_some() {
-        sim.run_from(
-            &x,
-            clock,
-            args.record,
-            &mut (
-                &mut log,
-                &mut max_tip,
-                &mut energy,
-                &mut strobe,
-                (&mut dense, &mut ticker),
-            ),
-        )?
-    } else {
-        sim.run_from(
-            &x,
-            clock,
-            args.record,
-            &mut (
-                &mut log,
-                &mut max_tip,
-                &mut energy,
-                &mut strobe,
-                &mut ticker,
-            ),
-        )?
-    };
-    if let Some(e) = &energy {
-        add(&e.budget);
+    let mut strobe = Strobe::keeping_last(keep);
+    // in chunks, so that a window whose events pass the cap is refused then, not after
+    // all its periods (each restart is at a period boundary, where segments end anyway)
+    let mut remaining = args.record;
+    while remaining > 0 {
+        let step = remaining.min(CHUNK);
+        let mut energy = budgeted();
+        let end = if args.dense.is_some() {
+            sim.run_from(
+                &x,
+                clock,
+                step,
+                &mut (
+                    &mut log,
+                    &mut max_tip,
+                    &mut energy,
+                    &mut strobe,
+                    (&mut dense, &mut ticker),
+                ),
+            )?
+        } else {
+            sim.run_from(
+                &x,
+                clock,
+                step,
+                &mut (
+                    &mut log,
+                    &mut max_tip,
+                    &mut energy,
+                    &mut strobe,
+                    &mut ticker,
+                ),
+            )?
+        };
+        if let Some(e) = &energy {
+            add(&e.budget);
+        }
+        segments += end.stats.segments;
+        log.check(args)?;
+        (x, clock) = (end.state, end.clock);
+        remaining -= step;
     }
-    segments += end.stats.segments;
-    log.check(args)?;
     let strobe_states = strobe.states();
-    (x, clock) = (end.state, end.clock);
     drop(task);
     let (period_m, periodicity_residual, max_period_searched) = period_search(args, &strobe_states);
     let last_cycle = clock.cycles;
