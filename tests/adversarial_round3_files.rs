@@ -28,7 +28,7 @@ fn item_9_atlas_merge_checks_every_field_of_a_shard() {
     let good: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(d.join("s.json")).unwrap()).unwrap();
     type Edit = fn(&mut serde_json::Value);
-    let cases: [(&str, Edit, &str); 12] = [
+    let cases: [(&str, Edit, &str); 13] = [
         (
             "m0",
             |v| v["rows"][0]["cells"][0]["attractors"][0]["period_m"] = 0.into(),
@@ -79,6 +79,11 @@ fn item_9_atlas_merge_checks_every_field_of_a_shard() {
                 v["rows"][0]["cells"][0]["attractors"][0]["impact_velocities"] =
                     serde_json::json!([1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0])
             },
+            "impact_velocities",
+        ),
+        (
+            "velocity away from the stop",
+            |v| v["rows"][0]["cells"][0]["attractors"][0]["impact_velocities"][0] = (-5.0).into(),
             "impact_velocities",
         ),
         (

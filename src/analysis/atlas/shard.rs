@@ -123,6 +123,13 @@ impl Partial {
                             "one velocity per entry (impacts_n)",
                         );
                     }
+                    // an entry into contact moves into the stop (the simulator's invariant)
+                    if a.impact_velocities.iter().any(|v| v.is_nan() || *v <= 0.0) {
+                        return bad(
+                            at("impact_velocities"),
+                            "entry velocities into the stop: positive",
+                        );
+                    }
                     if a.starts.is_empty() && !a.continued {
                         return bad(at("starts"), "a start that reached it, or `continued`");
                     }
