@@ -554,3 +554,37 @@ fn item_12_a_window_run_in_chunks_keeps_its_period() {
         assert_eq!(v["energy_imbalance_within_bound"], true);
     }
 }
+
+#[test]
+fn a_rigid_window_cut_short_is_printed_but_exits_1() {
+    // the chatter comes inside the window: what happened up to the stop is printed, and
+    // the exit status says the window is not the one asked for (it was 0)
+    let (code, out, err) = cantilever(&[
+        "simulate",
+        "--model",
+        "rigid",
+        "--law",
+        "stiffness-limit",
+        "--modes",
+        "3",
+        "--gap",
+        "0.01",
+        "--zeta1",
+        "0.01",
+        "--omega",
+        "0.1",
+        "--periods",
+        "0",
+        "--record",
+        "4",
+        "--json",
+    ]);
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("the window is incomplete"), "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert!(v["outcome"]
+        .as_str()
+        .unwrap()
+        .starts_with("stopped at t = "));
+    assert!(!v["events"].as_array().unwrap().is_empty());
+}

@@ -80,7 +80,10 @@ enum Command {
     /// phase (fraction of T), entering, grazing (a touch with zero normal velocity to
     /// round-off: recorded, no switch), tip_velocity, modal_velocities (η̇ at the event;
     /// rigid: before and after the impact); max_tip — the certified largest tip
-    /// displacement of the window with its time and tolerance; energy_imbalance — the
+    /// displacement of the window with its time and tolerance (compliant; null for the
+    /// rigid model); outcome — "completed", or why a rigid run stopped inside its window
+    /// (chatter without a sticking limit): the output then ends at the stop and the exit
+    /// status is 1 (a run that stops before its window is refused); energy_imbalance — the
     /// unaccounted part of the exact energy budget of the whole run (compliant);
     /// eigenvector_condition — the flow is good to about this × ε; units — T, (β₁⁻)², f₁,
     /// k₁ and the free tip amplitude at ω.
@@ -414,6 +417,15 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 });
             } else {
                 emit(&simulate::to_text(&report));
+            }
+            // a window cut short is printed (it holds what happened up to the stop) but
+            // is not the result asked for
+            if report.outcome != "completed" {
+                return Err(error::Error::Unsupported(format!(
+                    "the window is incomplete: the run {}",
+                    report.outcome
+                ))
+                .into());
             }
             Ok(())
         }
