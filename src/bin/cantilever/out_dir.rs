@@ -9,11 +9,16 @@ use impacting_cantilever::error::ParameterError;
 pub fn writable_dir(dir: &std::path::Path) -> Result<(), ParameterError> {
     let fail = |why: String| ParameterError::new("--out", dir.display(), &why);
     let mut probe_dir = dir.to_path_buf();
-    if dir.exists() {
-        if !dir.is_dir() {
+    // one look at `dir`: another writer may swap its set in between two (the folder is
+    // briefly absent), and "exists" then "is not a directory" would read that as a file
+    let exists = match std::fs::metadata(dir) {
+        Ok(m) if !m.is_dir() => {
             return Err(fail("a directory (it is a file or a device)".into()));
         }
-    } else {
+        Ok(_) => true,
+        Err(_) => false,
+    };
+    if !exists {
         while !probe_dir.exists() {
             probe_dir = match probe_dir.parent() {
                 Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
@@ -35,7 +40,7 @@ pub fn writable_dir(dir: &std::path::Path) -> Result<(), ParameterError> {
         Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
         _ => std::path::PathBuf::from("."),
     };
-    if dir.exists() {
+    if exists {
         probe_dir = beside(dir);
     }
     let probe_in = |d: &std::path::Path| {
@@ -46,7 +51,7 @@ pub fn writable_dir(dir: &std::path::Path) -> Result<(), ParameterError> {
     };
     match probe_in(&probe_dir) {
         Ok(()) => Ok(()),
-        Err(_) if dir.exists() && probe_in(dir).is_ok() => Ok(()),
+        Err(_) if exists && probe_in(dir).is_ok() => Ok(()),
         Err(e) => Err(fail(format!("a writable directory ({e})"))),
     }
 }

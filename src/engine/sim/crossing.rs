@@ -196,6 +196,13 @@ fn search<S: Signal + ?Sized>(
                 .or_else(|| negative_point(sig, target, s, step, stats));
             return Some(Found::Crossing(match lo {
                 Some(lo) => polish(sig, target, lo, (s + step, next.g), rel_tol, stats),
+                // No negative value at all, and g falling again at the step's end: over
+                // long steps within its band g rose to just above it and turned back (N =
+                // 20 at 1e11k₁, d₀ = 0.006: ġ = −1e-11 there, 7.8e-6 after the start).
+                // Put at the step's end the switch would carry a velocity into the region
+                // it leaves; at the top of g its velocity vanishes, and the caller judges it
+                // a touch within round-off.
+                None if p.gd > 0.0 && next.gd < 0.0 => top(sig, target, s, s + step, stats),
                 // no negative value at all: the state left the region at its start
                 None => s + step,
             }));
@@ -271,6 +278,24 @@ fn shape_horizon(p: &Local, convex: bool) -> f64 {
         h = h.max(if m3 > 0.0 { gdd / m3 } else { f64::INFINITY });
     }
     h
+}
+
+/// The maximum of g in (a, b), given ġ(a) > 0 > ġ(b): bisection on ġ to round-off.
+fn top<S: Signal + ?Sized>(sig: &S, target: Target, a: f64, b: f64, stats: &mut Stats) -> f64 {
+    let (mut lo, mut hi) = (a, b);
+    for _ in 0..64 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        stats.evaluations += 1;
+        if sig.local(mid, target).gd > 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
 }
 
 /// From a start on the surface (g = 0, ġ < 0), a point in (s, s + step) with g < 0:
