@@ -175,8 +175,8 @@ fn item_6_the_rigid_model_writes_its_dense_trajectory() {
     let rows: Vec<&str> = text.lines().skip(1).collect();
     assert_eq!(
         rows.len(),
-        2 * 200 + 1,
-        "a row per sample and the window's start"
+        2 * 200,
+        "a row per sample from the window's start, its end excluded (as the compliant model's)"
     );
     // the tip never beyond the stop, and resting on it for the sticking phase: from the
     // accumulation near phase 0.87 to the release at 1/6, about 0.3 of each period

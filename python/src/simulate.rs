@@ -68,6 +68,17 @@ impl DenseOut {
         self.velocity.push(velocity);
         self.states.extend_from_slice(x.as_slice());
     }
+
+    /// Drops the last sample (the window's end, which is the final state).
+    fn pop(&mut self) {
+        if self.t.pop().is_some() {
+            let n = self.states.len() / (self.t.len() + 1);
+            self.contact.pop();
+            self.tip.pop();
+            self.velocity.pop();
+            self.states.truncate(self.states.len() - n);
+        }
+    }
 }
 
 /// What a run reports.
@@ -378,6 +389,10 @@ fn rigid(
         if reporter.stopped() {
             return Err(Error::Unsupported("interrupted".into()));
         }
+    }
+    // as the compliant model's: the window's end is the final state, not a sample
+    if outcome == Outcome::Completed {
+        dense.pop();
     }
     let (period_m, residual, max_period_searched) = period_search(args, &strobe_states);
     let impacts = |from: i64| events.iter().filter(|e| e.cycle >= from).count() as u64;

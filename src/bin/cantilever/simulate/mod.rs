@@ -150,7 +150,9 @@ pub struct SimulateArgs {
     #[arg(long)]
     pub final_state: Option<PathBuf>,
     /// Write dense output of the recorded window (CSV: t, region, tip, tip velocity, η_j,
-    /// η̇_j) to this file.
+    /// η̇_j) to this file: record × dense-per-period rows, evenly spaced from the window's
+    /// start, its end excluded (the end is the final state); a rigid run that stops inside
+    /// the window ends with a row at the stop.
     #[arg(long)]
     pub dense: Option<PathBuf>,
     /// Dense samples per forcing period (1 to 10 000).

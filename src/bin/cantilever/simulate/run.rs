@@ -460,6 +460,10 @@ fn rigid(args: &SimulateArgs, setup: Setup, bars: &Bars) -> Result<Report, Error
         task.advance(step);
     }
     drop(task);
+    // as the compliant model's: the window's end is the final state, not a sample
+    if outcome == Outcome::Completed && !dense.is_empty() {
+        dense.pop();
+    }
     let (period_m, periodicity_residual, max_period_searched) = period_search(args, &strobe_states);
     let impacts = |from: i64| events.iter().filter(|e| e.cycle >= from).count() as u64;
     let chatter = "impacts accumulate (chatter), and this law changes the velocity orthogonal to the tip at every impact, so the chatter has no sticking limit (use --law impulse-response)";
