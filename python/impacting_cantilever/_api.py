@@ -68,7 +68,8 @@ def simulate(
         seed: start from the random state of this seed (``Model.random_state``).
         dense_per_period: dense output of the window, this many samples per forcing
             period (1 to 10 000; at most 2.5e8 numbers in all, record × dense_per_period ×
-            (2N + 4)); None for none.
+            (2N + 4)): record × dense_per_period samples from the window's start, its end
+            excluded (the end is the final state); None for none.
         periodicity_tolerance: relative tolerance of the period search on the strobe
             (§5.2's 1e-9).
         max_period: the largest period m searched (1 to 1000; also ≤ record/2).
