@@ -326,12 +326,12 @@ fn item_11_an_output_set_is_written_whole_even_by_concurrent_writers() {
         // one atlas's files, never a mix
         assert_eq!(seed_of("data.json"), seed_of("key_numbers.json"));
     }
-    // nothing left beside the output but its lock
+    // nothing left beside the output, not even its lock
     let stray: Vec<String> = std::fs::read_dir(&d)
         .unwrap()
         .flatten()
         .map(|e| e.file_name().to_string_lossy().into_owned())
-        .filter(|n| n.contains(".tmp") || n.contains(".old"))
+        .filter(|n| n.contains(".tmp") || n.contains(".old") || n.contains(".lock"))
         .collect();
     assert!(stray.is_empty(), "{stray:?}");
     // an interrupted scene exits as interrupted and leaves no temporary behind

@@ -12,7 +12,7 @@
 //!
 //! A scene's output set (plot, tables, data, key numbers) is written as a whole
 //! ([`write_set`]): into a sibling temporary directory that is then swapped in, under a
-//! lock, so an interrupted run or two concurrent writers never leave new files beside old
+//! lock (removed after), so an interrupted run or two concurrent writers never leave new files beside old
 //! ones. Temporaries are registered while they exist; [`remove_temporaries`] deletes them
 //! (the command line calls it on SIGINT and SIGTERM).
 
@@ -330,14 +330,7 @@ pub fn write_set(dir: &Path, files: &[(String, String)]) -> Result<(), Error> {
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_else(|| "out".into());
-    let lock_path = parent.join(format!(".{name}.lock"));
-    let lock = std::fs::OpenOptions::new()
-        .create(true)
-        .truncate(false)
-        .write(true)
-        .open(&lock_path)
-        .map_err(io(&lock_path))?;
-    lock.lock().map_err(io(&lock_path))?;
+    let lock = OutputLock::acquire(&parent.join(format!(".{name}.lock")))?;
     let names: Vec<&str> = files.iter().map(|(n, _)| n.as_str()).collect();
     let result = if dir.exists() && !(dir.is_dir() && owned(&dir, &names)) {
         if !dir.is_dir() {
@@ -352,8 +345,72 @@ pub fn write_set(dir: &Path, files: &[(String, String)]) -> Result<(), Error> {
     } else {
         swap_in(&parent, &name, &dir, files)
     };
-    let _ = lock.unlock();
+    drop(lock);
     result
+}
+
+/// An exclusive lock on an empty file beside the output, held while its set is written and
+/// removed on release, so nothing is left behind. Removing a lock file is only safe if a
+/// writer that was waiting on the removed file notices: after locking, a writer checks that
+/// the path still names the file it locked, and otherwise locks the path's new file.
+struct OutputLock {
+    file: std::fs::File,
+    path: PathBuf,
+}
+
+impl OutputLock {
+    /// Attempts before giving up: each failed attempt means another writer released the
+    /// lock in between, so even a busy folder needs a handful.
+    const ATTEMPTS: usize = 1000;
+
+    fn acquire(path: &Path) -> Result<OutputLock, Error> {
+        use std::os::unix::fs::MetadataExt;
+        for _ in 0..Self::ATTEMPTS {
+            // a link, FIFO or device here is not ours to lock (opening a FIFO would block)
+            if let Ok(m) = std::fs::symlink_metadata(path) {
+                if !m.file_type().is_file() {
+                    return Err(Error::Io {
+                        path: path.display().to_string(),
+                        source: std::io::Error::other(
+                            "the output's lock is not a regular file; remove it",
+                        ),
+                    });
+                }
+            }
+            let file = std::fs::OpenOptions::new()
+                .create(true)
+                .truncate(false)
+                .write(true)
+                .open(path)
+                .map_err(io(path))?;
+            file.lock().map_err(io(path))?;
+            let held = file.metadata().map_err(io(path))?;
+            let same = std::fs::symlink_metadata(path)
+                .is_ok_and(|now| now.dev() == held.dev() && now.ino() == held.ino());
+            if same {
+                // removed by the signal clean-up too: this process holds it
+                register(path);
+                return Ok(OutputLock {
+                    file,
+                    path: path.to_path_buf(),
+                });
+            }
+        }
+        Err(Error::Io {
+            path: path.display().to_string(),
+            source: std::io::Error::other("could not lock the output: too many other writers"),
+        })
+    }
+}
+
+impl Drop for OutputLock {
+    fn drop(&mut self) {
+        // removed before it is unlocked: a waiter then finds the path gone or new and retries
+        let _writing = writing();
+        let _ = std::fs::remove_file(&self.path);
+        unregister(&self.path);
+        let _ = self.file.unlock();
+    }
 }
 
 /// The new set in a temporary sibling, then renamed into place (the old set moved aside
@@ -432,12 +489,12 @@ mod tests {
         write_set(&out, &set("1")).unwrap();
         write_set(&out, &set("2")).unwrap();
         assert_eq!(std::fs::read_to_string(out.join("data.json")).unwrap(), "2");
-        // nothing left beside it but the lock
+        // nothing left beside it, not even the lock
         let extra: Vec<String> = std::fs::read_dir(&d)
             .unwrap()
             .flatten()
             .map(|e| e.file_name().to_string_lossy().into_owned())
-            .filter(|n| n != "fig4" && n != ".fig4.lock")
+            .filter(|n| n != "fig4")
             .collect();
         assert!(extra.is_empty(), "{extra:?}");
         // a folder with a file of the user's is written file by file, the file kept
