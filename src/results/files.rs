@@ -12,8 +12,8 @@
 //!
 //! A scene's output set (plot, tables, data, key numbers) is written as a whole
 //! ([`write_set`]): into a sibling temporary directory that is then swapped in, under a
-//! lock (removed after), so an interrupted run or two concurrent writers never leave new files beside old
-//! ones. Temporaries are registered while they exist; [`remove_temporaries`] deletes them
+//! lock (removed after), so an interrupted run or two concurrent writers never leave new
+//! files beside old ones. Temporaries are registered while they exist; [`remove_temporaries`] deletes them
 //! (the command line calls it on SIGINT and SIGTERM).
 
 use crate::error::{Error, ParameterError};
