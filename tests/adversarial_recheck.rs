@@ -154,3 +154,44 @@ fn a_rigid_window_cut_short_is_printed_but_exits_1() {
         .starts_with("stopped at t = "));
     assert!(!v["events"].as_array().unwrap().is_empty());
 }
+
+#[test]
+fn a_run_that_would_take_weeks_says_so_within_seconds() {
+    // --periods 1e8 is legal; at a chattering stiff stop it would take weeks. The run
+    // projects its time after 2 s and says it on stderr (a pipe here, not a terminal).
+    use std::io::BufRead;
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_cantilever"))
+        .args([
+            "simulate",
+            "--modes",
+            "12",
+            "--zeta1",
+            "0.01",
+            "--omega",
+            "0.6",
+            "--stop-stiffness",
+            "1e12",
+            "--gap",
+            "0.003",
+            "--periods",
+            "100000000",
+        ])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let stderr = child.stderr.take().unwrap();
+    let (send, receive) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let mut line = String::new();
+        let _ = std::io::BufReader::new(stderr).read_line(&mut line);
+        let _ = send.send(line);
+    });
+    // 2 s of measuring, and a debug build's first periods
+    let line = receive.recv_timeout(std::time::Duration::from_secs(120));
+    let _ = child.kill();
+    let _ = child.wait();
+    let line = line.expect("no projection within 120 s");
+    assert!(line.starts_with("simulate: periods: about "), "{line}");
+    assert!(line.contains("weeks more at the rate so far"), "{line}");
+}

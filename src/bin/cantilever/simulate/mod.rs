@@ -114,7 +114,8 @@ pub struct SimulateArgs {
     /// modal force f₁ cos ωt on mode 1).
     #[arg(long, allow_hyphen_values = true, default_value = "unit")]
     pub forcing: String,
-    /// Periods simulated and discarded before recording (≤ 1e8).
+    /// Periods simulated and discarded before recording (≤ 1e8). A run that projects to take
+    /// over 10 minutes says so after 2 s, with the time it projects.
     #[arg(long)]
     pub periods: u64,
     /// Periods recorded after that (≤ 1e5).
