@@ -28,7 +28,7 @@ fn item_9_atlas_merge_checks_every_field_of_a_shard() {
     let good: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(d.join("s.json")).unwrap()).unwrap();
     type Edit = fn(&mut serde_json::Value);
-    let cases: [(&str, Edit, &str); 13] = [
+    let cases: [(&str, Edit, &str); 14] = [
         (
             "m0",
             |v| v["rows"][0]["cells"][0]["attractors"][0]["period_m"] = 0.into(),
@@ -85,6 +85,12 @@ fn item_9_atlas_merge_checks_every_field_of_a_shard() {
             "velocity away from the stop",
             |v| v["rows"][0]["cells"][0]["attractors"][0]["impact_velocities"][0] = (-5.0).into(),
             "impact_velocities",
+        ),
+        (
+            // positive but faster than any periodic orbit can move (the energy bound)
+            "velocity beyond the energy bound",
+            |v| v["rows"][0]["cells"][0]["attractors"][0]["impact_velocities"][0] = 1e300.into(),
+            "energy bound",
         ),
         (
             "continued",

@@ -9,3 +9,4 @@ pub mod harmonics;
 pub mod impact_section;
 pub mod orbit;
 pub mod shooting;
+pub mod speed_bound;

@@ -365,6 +365,24 @@ impl GalerkinModel {
         (amp, amp * omega)
     }
 
+    /// The same model forced at frequency ω instead (the modal forcing amplitudes do not
+    /// depend on ω, so nothing is recomputed); an error without forcing or for a bad ω.
+    pub fn with_omega(&self, omega: f64) -> Result<Self, ParameterError> {
+        error::finite_positive("forcing frequency ω", omega)?;
+        let mut m = self.clone();
+        match m.params.forcing.as_mut() {
+            Some(f) => f.omega = omega,
+            None => {
+                return Err(ParameterError::new(
+                    "forcing frequency ω",
+                    omega,
+                    "a model with forcing",
+                ))
+            }
+        }
+        Ok(m)
+    }
+
     /// The same model with its gap d₀ set to `gap_over_free` times A_free(ω), the free tip
     /// amplitude at the forcing frequency ([`Self::free_tip_amplitude`]): a gap chosen as a
     /// fraction of the motion actually forced is reached at any ω (< 1 means contact).

@@ -3,6 +3,8 @@
 //! exactly the atlas one process computes.
 
 use super::*;
+use crate::analysis::speed_bound::periodic_tip_speed_bound;
+use crate::model::galerkin::GalerkinModel;
 
 /// A part of the rows: shard `index` of `count` takes rows i with i mod count = index
 /// (interleaved, so each shard gets a share of the costly stiff rows).
@@ -52,11 +54,20 @@ pub struct Partial {
     pub rows: Vec<Row>,
 }
 
+/// The largest entry velocity (units of ωA_free, as the atlas records them) a periodic
+/// orbit of m forcing periods can have in `model`: the energy bound of
+/// [`crate::analysis::speed_bound`].
+fn speed_limit(model: &GalerkinModel, period_m: u64) -> Option<f64> {
+    let scale = model.free_tip_amplitude().1;
+    periodic_tip_speed_bound(model, period_m).map(|b| b / scale)
+}
+
 impl Partial {
     /// Checks a shard read from a file against what [`compute_shard`] can produce: valid
     /// parameters, its rows among the shard's, each row's k as the grid gives it, and every
     /// cell consistent (periods 1 … max_period, spectral radii of stable orbits in [0, 1),
-    /// start indices among the cell's starts, `from_rest` naming one of its attractors,
+    /// start indices among the cell's starts, entry velocities positive and below the
+    /// energy bound on a periodic orbit's tip speed, `from_rest` naming one of its attractors,
     /// checks only on checked cells). The error names the row, the column and the field.
     pub fn validate(&self) -> Result<(), ParameterError> {
         let p = &self.params;
@@ -98,8 +109,12 @@ impl Partial {
                     "omega_points cells",
                 );
             }
+            // the row's model, forced at each column's ω below (1 ms to build at N = 60)
+            let row_model = p.model(r.modes, r.k_over_k1, p.omega_over_w1(0))?.model()?;
             for (j, c) in r.cells.iter().enumerate() {
                 let at = |field: &str| format!("{field} of row {i}, column {j}");
+                let omega = p.omega_over_w1(j) * crate::model::galerkin::first_frequency();
+                let model = row_model.with_omega(omega)?;
                 for a in &c.attractors {
                     if !(1..=p.max_period).contains(&a.period_m) {
                         return bad(at("period_m"), "1 ≤ m ≤ max_period");
@@ -129,6 +144,16 @@ impl Partial {
                             at("impact_velocities"),
                             "entry velocities into the stop: positive",
                         );
+                    }
+                    // no periodic orbit moves faster than the energy bound allows
+                    if let Some(most) = speed_limit(&model, a.period_m) {
+                        if a.impact_velocities.iter().any(|v| *v > most) {
+                            return bad(
+                                at("impact_velocities"),
+                                "entry velocities below the energy bound on a periodic \
+                                 orbit's tip speed",
+                            );
+                        }
                     }
                     if a.starts.is_empty() && !a.continued {
                         return bad(at("starts"), "a start that reached it, or `continued`");

@@ -101,6 +101,9 @@ mod tests {
         assert_eq!(projected_rest(s(4), 10, 100), Some(s(36)));
         // 1e8 periods at 25 ms each: weeks, no overflow
         let rest = projected_rest(s(2), 80, 100_000_000).unwrap();
-        assert!((rest.as_secs_f64() - 0.025 * (1e8 - 80.0)).abs() < 1e-6, "{rest:?}");
+        assert!(
+            (rest.as_secs_f64() - 0.025 * (1e8 - 80.0)).abs() < 1e-6,
+            "{rest:?}"
+        );
     }
 }
