@@ -195,3 +195,27 @@ fn a_run_that_would_take_weeks_says_so_within_seconds() {
     assert!(line.starts_with("simulate: periods: about "), "{line}");
     assert!(line.contains("weeks more at the rate so far"), "{line}");
 }
+
+#[test]
+fn a_seed_that_starts_the_tip_beyond_a_rigid_stop_is_named() {
+    // the random start of seed 3 puts the tip 0.45 beyond d₀ = 0: the refusal names --seed
+    // (it named an "initial state" the user never gave)
+    let (code, _, err) = cantilever(&[
+        "simulate",
+        "--model",
+        "rigid",
+        "--modes",
+        "3",
+        "--zeta1",
+        "0.01",
+        "--omega",
+        "1",
+        "--periods",
+        "2",
+        "--seed",
+        "3",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.starts_with("error: invalid --seed: got 3;"), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+}

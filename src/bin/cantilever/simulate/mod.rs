@@ -145,7 +145,8 @@ pub struct SimulateArgs {
     /// onto the N modes.
     #[arg(long, conflicts_with = "seed")]
     pub initial_profile: Option<PathBuf>,
-    /// Start from a random state (each η_j uniform in ±2A_free/N, η̇_j in ±2ωA_free/N) of this seed.
+    /// Start from a random state (each η_j uniform in ±2A_free/N, η̇_j in ±2ωA_free/N) of this
+    /// seed. The rigid model refuses a seed whose start puts the tip beyond its stop.
     #[arg(long)]
     pub seed: Option<u64>,
     /// Write the final state (JSON) to chain runs or pick one of coexisting attractors.

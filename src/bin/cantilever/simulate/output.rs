@@ -135,6 +135,23 @@ fn read_initial_state(
         let (amp, _) = model.free_tip_amplitude();
         let mut rng = SplitMix64::for_point(seed, n as u64, 0, 0);
         let x = random_state(&mut rng, n, 4.0 * amp, model.omega());
+        // a rigid stop cannot be penetrated: say which option drew the tip beyond it
+        // (the rigid engine's own measure of "beyond")
+        let gap = model.params().gap;
+        let beyond = model.tip().dot(&x.rows(0, n)) - gap;
+        let length = gap.abs() + model.tip().amax() * x.rows(0, n).amax();
+        if args.model == ModelKind::Rigid && beyond > 1e-9 * length {
+            return Err(ParameterError::new(
+                "--seed",
+                seed,
+                &format!(
+                    "a seed whose random start has the tip at or before the rigid stop (this \
+                     one puts it {} beyond d₀; at d₀ = 0 about half the seeds do): another \
+                     seed, or --initial-state",
+                    impacting_cantilever::error::number(beyond)
+                ),
+            ));
+        }
         return Ok((x, format!("random state, seed {seed}")));
     }
     Ok((DVector::zeros(2 * n), "rest".into()))
