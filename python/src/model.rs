@@ -12,7 +12,7 @@ pub use crate::spec::{count, range, Cantilever, ForcingSpec, Law, MAX_PERIODS, M
 use crate::spec::{tiny, MAX_STATE, MIN_SCALE};
 use crate::{bad, value_error, Res};
 use impacting_cantilever::analysis::orbit::{random_state, SplitMix64};
-use impacting_cantilever::engine::rigid::RigidImpact;
+use impacting_cantilever::engine::rigid::{beyond_the_stop, RigidImpact};
 use impacting_cantilever::engine::sim::Simulator;
 use impacting_cantilever::error::{self, Error, ParameterError};
 use impacting_cantilever::model::galerkin::{
@@ -123,10 +123,25 @@ impl Model {
                 }
                 (DVector::from_vec(x), "state given".to_string())
             }
-            (None, Some(seed)) => (
-                self.seeded_state(seed),
-                format!("random state, seed {seed}"),
-            ),
+            (None, Some(seed)) => {
+                let x = self.seeded_state(seed);
+                // a rigid stop cannot be penetrated: name the seed that drew the tip beyond it
+                if self.rigid.is_some() {
+                    if let Some(beyond) = beyond_the_stop(self.sim.model(), &x) {
+                        return Err(bad(
+                            "seed",
+                            seed,
+                            &format!(
+                                "a seed whose random start has the tip at or before the rigid \
+                                 stop (this one puts it {} beyond d₀; at d₀ = 0 about half the \
+                                 seeds do): another seed, or a start state of your own",
+                                error::number(beyond)
+                            ),
+                        ));
+                    }
+                }
+                (x, format!("random state, seed {seed}"))
+            }
             (None, None) => {
                 if let (Some(_), Some(c)) = (&self.rigid, self.cantilever()) {
                     if c.gap < 0.0 {

@@ -70,6 +70,8 @@ CASES: list[tuple[Callable[[], object], str, list[str], str]] = [
      flags("--model", "rigid", "--law", "newton"), "--law newton"),
     (lambda: ic.simulate(rigid(gap=-0.5), 1), "gap (d₀)",
      flags("--model", "rigid", "--gap", "-0.5"), "--gap (d₀)"),
+    (lambda: ic.simulate(rigid(), 1, seed=3), "seed", flags("--model", "rigid", "--seed", "3"),
+     "--seed"),
     (lambda: ic.simulate(model(), 200_000_000), "periods", flags("--periods", "200000000"),
      "--periods"),
     (lambda: ic.simulate(model(), 1, 200_000), "record", flags("--record", "200000"), "--record"),

@@ -24,7 +24,7 @@ pub mod sticking;
 use crate::engine::sim::monodromy::flow_jacobian;
 use crate::engine::sim::{check_state, Clock, Simulator, Stats};
 use crate::error::ParameterError;
-use crate::model::galerkin::Region;
+use crate::model::galerkin::{GalerkinModel, Region};
 use nalgebra::{DMatrix, DVector};
 use serde::Serialize;
 use std::sync::OnceLock;
@@ -505,8 +505,7 @@ impl RigidImpact {
     /// A rigid stop cannot be penetrated: a state with the tip beyond it (by more than
     /// 1e-9 of its scale) is not a state of the model.
     fn check_not_beyond(&self, x: &DVector<f64>) -> Result<(), ParameterError> {
-        let (g, _, length, _) = self.stop_measures(x);
-        if g > 1e-9 * length {
+        if let Some(g) = beyond_the_stop(self.sim.model(), x) {
             return Err(ParameterError::new(
                 "initial state",
                 format!("a tip {} beyond the rigid stop", crate::error::number(g)),
@@ -548,4 +547,15 @@ impl RigidImpact {
         let geometric = r1 > 0.0 && r2 > 0.0 && r2 < 1.0 && ((r2 - r1) / r2).abs() < 0.1;
         (geometric && d[2] < 1e-6 * period).then(|| t_n + d[2] * r2 / (1.0 - r2))
     }
+}
+
+/// How far beyond a rigid stop state x = [η; η̇] puts the tip (φ(1)ᵀη − d₀), when that is
+/// more than 1e-9 of the state's length scale |d₀| + |φ(1)|·‖η‖∞; None for a state the
+/// rigid model accepts. A start drawn at random is checked with it before a run, so that
+/// the refusal can name the option that drew it.
+pub fn beyond_the_stop(model: &GalerkinModel, x: &DVector<f64>) -> Option<f64> {
+    let n = model.modes();
+    let g = model.switching_function(&x.rows(0, n).into_owned());
+    let length = model.params().gap.abs() + model.tip().amax() * x.rows(0, n).amax();
+    (g > 1e-9 * length).then_some(g)
 }

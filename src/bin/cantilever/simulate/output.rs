@@ -5,6 +5,7 @@
 use super::run::Report;
 use super::{ModelKind, SimulateArgs};
 use impacting_cantilever::analysis::orbit::{random_state, SplitMix64};
+use impacting_cantilever::engine::rigid::beyond_the_stop;
 use impacting_cantilever::error::{Error, ParameterError};
 use impacting_cantilever::model::galerkin::{first_frequency, GalerkinModel};
 use impacting_cantilever::results::scene::write_atomically;
@@ -136,25 +137,28 @@ fn read_initial_state(
         let mut rng = SplitMix64::for_point(seed, n as u64, 0, 0);
         let x = random_state(&mut rng, n, 4.0 * amp, model.omega());
         // a rigid stop cannot be penetrated: say which option drew the tip beyond it
-        // (the rigid engine's own measure of "beyond")
-        let gap = model.params().gap;
-        let beyond = model.tip().dot(&x.rows(0, n)) - gap;
-        let length = gap.abs() + model.tip().amax() * x.rows(0, n).amax();
-        if args.model == ModelKind::Rigid && beyond > 1e-9 * length {
-            return Err(ParameterError::new(
-                "--seed",
-                seed,
-                &format!(
-                    "a seed whose random start has the tip at or before the rigid stop (this \
-                     one puts it {} beyond d₀; at d₀ = 0 about half the seeds do): another \
-                     seed, or --initial-state",
-                    impacting_cantilever::error::number(beyond)
-                ),
-            ));
+        if args.model == ModelKind::Rigid {
+            if let Some(beyond) = beyond_the_stop(model, &x) {
+                return Err(seed_beyond_the_stop(seed, beyond));
+            }
         }
         return Ok((x, format!("random state, seed {seed}")));
     }
     Ok((DVector::zeros(2 * n), "rest".into()))
+}
+
+/// The refusal of a seed whose random start puts the tip `beyond` a rigid stop.
+fn seed_beyond_the_stop(seed: u64, beyond: f64) -> ParameterError {
+    ParameterError::new(
+        "--seed",
+        seed,
+        &format!(
+            "a seed whose random start has the tip at or before the rigid stop (this one puts \
+             it {} beyond d₀; at d₀ = 0 about half the seeds do): another seed, or a start \
+             state of your own",
+            impacting_cantilever::error::number(beyond)
+        ),
+    )
 }
 
 /// Fails early (exit 2) when an output file cannot be written, before any work.
