@@ -349,7 +349,7 @@ pub fn to_text(r: &Report) -> String {
     match (r.energy_imbalance, r.energy_imbalance_bound) {
         (Some(e), Some(b)) if e > b => s.push_str(&format!(
             "energy imbalance: {e:.2e} — ABOVE its round-off bound {b:.1e} (κε√segments): \
-             the energy integrals are less accurate than the flow at this N and k\n"
+             the flow or the energy integrals are less accurate than κε at this N and k\n"
         )),
         (Some(e), Some(b)) => s.push_str(&format!(
             "energy imbalance: {e:.2e} (within its round-off bound {b:.1e}, κε√segments)\n"

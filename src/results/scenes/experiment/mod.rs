@@ -85,7 +85,15 @@ pub struct Variant {
     pub contacts_ms: Vec<(f64, f64)>,
     /// First entry to last exit (ms).
     pub cluster_ms: f64,
+    /// A motion that does not settle: the least and most contact intervals in one forcing
+    /// period over [`SPREAD_PERIODS`] periods (one period's sample would be a number that
+    /// any round-off change moves; a cluster has no meaning there, its contacts straddle
+    /// the period's ends).
+    pub spread: Option<(usize, usize)>,
 }
+
+/// Forcing periods over which a motion that does not settle is summarised.
+pub const SPREAD_PERIODS: i64 = 50;
 
 /// The scene's result.
 #[derive(Debug, Clone, Serialize)]
@@ -264,6 +272,37 @@ fn contacts_of(
     Ok(contacts)
 }
 
+/// First entry to last exit (ms) of one period's contact intervals; 0 without contact.
+fn cluster(contacts_ms: &[(f64, f64)]) -> f64 {
+    match (contacts_ms.first(), contacts_ms.last()) {
+        (Some(a), Some(b)) => b.1 - a.0,
+        _ => 0.0,
+    }
+}
+
+/// The least and most contact intervals per forcing period over the [`SPREAD_PERIODS`]
+/// periods after `settled` (a motion that does not settle: a summary that round-off does
+/// not move, where one period's sample does).
+fn spread_of(
+    sim: &Simulator,
+    settled: &orbit::Settled,
+    tau: f64,
+) -> Result<(usize, usize), Error> {
+    let mut counts = (usize::MAX, 0);
+    let mut at = orbit::Settled {
+        kind: OrbitKind::NotPeriodic,
+        ..settled.clone()
+    };
+    for _ in 0..SPREAD_PERIODS {
+        let c = contacts_of(sim, &at, tau)?;
+        counts = (counts.0.min(c.len()), counts.1.max(c.len()));
+        let end = sim.run_from(&at.state, sim.clock_at_cycle(at.cycle), 1, &mut ())?;
+        at.state = end.state;
+        at.cycle += 1;
+    }
+    Ok(counts)
+}
+
 /// The Figure 9 orbit under two assumptions of eq (37) that the rig does not share: a
 /// shaker moves the clamp, so the base's acceleration loads every mode in proportion to
 /// ∫φ_j (eq (37) forces mode 1 only; here mode 1's share is kept as in eq (37)); and the
@@ -312,14 +351,16 @@ fn sensitivity(p: &ExperimentParams, tau: f64) -> Result<Vec<Variant>, Error> {
             s.max,
         )?;
         let contacts_ms = contacts_of(&sim, &settled, tau)?;
+        let spread = match settled.kind {
+            OrbitKind::Periodic { .. } => None,
+            OrbitKind::NotPeriodic => Some(spread_of(&sim, &settled, tau)?),
+        };
         out.push(Variant {
             name: name.to_string(),
             kind: settled.kind,
-            cluster_ms: match (contacts_ms.first(), contacts_ms.last()) {
-                (Some(a), Some(b)) => b.1 - a.0,
-                _ => 0.0,
-            },
+            cluster_ms: cluster(&contacts_ms),
             contacts_ms,
+            spread,
         });
     }
     Ok(out)
@@ -415,8 +456,25 @@ impl Scene for Experiment {
         }
         for (v, short) in d.variants.iter().zip(["base excitation", "viscous damping"]) {
             k.text(format!("{short} orbit"), v.kind.to_string());
-            k.integer(format!("{short} contact intervals"), v.contacts_ms.len() as i64);
-            k.cited(format!("{short} contact cluster"), v.cluster_ms, 3, timed(v.cluster_ms), "ms");
+            match v.spread {
+                // not settled: the range over SPREAD_PERIODS periods, not one period's sample
+                Some((fewest, most)) => {
+                    k.text(
+                        format!("{short} contact intervals per period over {SPREAD_PERIODS} periods"),
+                        format!("{fewest} to {most}"),
+                    );
+                }
+                None => {
+                    k.integer(format!("{short} contact intervals"), v.contacts_ms.len() as i64);
+                    k.cited(
+                        format!("{short} contact cluster"),
+                        v.cluster_ms,
+                        3,
+                        timed(v.cluster_ms),
+                        "ms",
+                    );
+                }
+            }
         }
         k
     }
@@ -428,13 +486,20 @@ impl Scene for Experiment {
             .variants
             .iter()
             .map(|v| {
-                format!(
-                    "{}: {} with {} contact intervals in {:.1} ms",
-                    v.name.split(':').next().unwrap_or(&v.name),
-                    v.kind,
-                    v.contacts_ms.len(),
-                    v.cluster_ms
-                )
+                let name = v.name.split(':').next().unwrap_or(&v.name);
+                match v.spread {
+                    Some((fewest, most)) => format!(
+                        "{name}: {} with {fewest} to {most} contact intervals per period over \
+                         {SPREAD_PERIODS} periods",
+                        v.kind
+                    ),
+                    None => format!(
+                        "{name}: {} with {} contact intervals in {:.1} ms",
+                        v.kind,
+                        v.contacts_ms.len(),
+                        v.cluster_ms
+                    ),
+                }
             })
             .collect::<Vec<_>>()
             .join("; ");

@@ -179,12 +179,13 @@ pub fn variants_table(d: &ExperimentData) -> String {
         format!("{:.1}", d.cluster_ms),
     ]];
     for v in &d.variants {
-        rows.push(vec![
-            v.name.clone(),
-            v.kind.to_string(),
-            v.contacts_ms.len().to_string(),
-            format!("{:.1}", v.cluster_ms),
-        ]);
+        // a motion that does not settle: its range over the periods summarised, and no
+        // cluster (its contacts straddle the period's ends)
+        let (intervals, cluster) = match v.spread {
+            Some((fewest, most)) => (format!("{fewest} to {most}"), "—".to_string()),
+            None => (v.contacts_ms.len().to_string(), format!("{:.1}", v.cluster_ms)),
+        };
+        rows.push(vec![v.name.clone(), v.kind.to_string(), intervals, cluster]);
     }
     markdown_table(
         &["model", "orbit", "contact intervals per period", "contact cluster (ms)"],
