@@ -121,9 +121,9 @@ pub struct SimulateArgs {
     /// Periods recorded after that (≤ 1e5).
     #[arg(long, default_value_t = 32)]
     pub record: u64,
-    /// Skip the exact energy budget (energy_imbalance is then absent): it adds about 40% to
-    /// a run at N = 10 and up to about 3.5× at a stiff stop, whose contacts are many and
-    /// short (criterion, 5 periods at 1e12k₁: N = 15 2.7×, N = 20 with d₀ = 0.003 3.5×).
+    /// Skip the exact energy budget (energy_imbalance is then absent): it adds about 20%
+    /// to a run, at Figure 4's N = 10 as at stiff stops up to 1e12k₁ (instructions counted:
+    /// 18% at N = 10, 17–21% at 1e11–1e12k₁ with N = 10–20).
     #[arg(long)]
     pub no_energy: bool,
     /// The model: compliant (eq 34) or rigid (§3).
