@@ -128,7 +128,7 @@ pub fn general(a: &DMatrix<f64>) -> Result<ModalBasis, FlowError> {
 }
 
 /// Contact (A⁺): the dense decomposition of [`general`], each eigenpair outside a block
-/// then refined on the quadratic eigenproblem's secular equation (see [`secular_root`]),
+/// then refined on the quadratic eigenproblem's secular equation (see `secular_root`),
 /// its eigenvector rewritten in closed form, v = [Q(λ)⁻¹φ; λQ(λ)⁻¹φ].
 ///
 /// The dense solver is backward stable for A⁺, whose norm the stop sets (‖A⁺‖ ~ kN/4):
