@@ -4,6 +4,7 @@ pub mod asymptotics;
 pub mod continuum;
 pub mod experiment;
 pub mod fe;
+pub mod forcing;
 pub mod galerkin;
 pub mod problems;
 pub mod restitution;
