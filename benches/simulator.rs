@@ -136,6 +136,7 @@ fn reference_integrator(c: &mut Criterion) {
                         atol: rtol * 1e-3,
                     },
                 )
+                .unwrap()
             })
         });
     }
@@ -157,6 +158,7 @@ fn reference_integrator(c: &mut Criterion) {
                     atol: 1e-15,
                 },
             )
+            .unwrap()
         })
     });
     g.finish();

@@ -28,13 +28,72 @@ pub enum Error {
         /// The cause.
         source: std::io::Error,
     },
-    /// Legal input that this method does not support, with the reason.
+    /// Legal input that this model or method does not support (a model without the
+    /// Jacobian shooting needs, a continuation of the rigid model, ...), with the reason.
     #[error("unsupported: {0}")]
     Unsupported(String),
+    /// A run or a window settled on no period m within what was searched: the motion may be
+    /// quasi-periodic or chaotic, or still in its transient.
+    #[error("no period: {0}")]
+    NoPeriod(String),
+    /// An iteration (Newton shooting, a continuation corrector) did not reach its
+    /// tolerance; `residual` is where it stopped.
+    #[error("not converged: {message}")]
+    NotConverged {
+        /// What did not converge, why, and what to try.
+        message: String,
+        /// The residual it stopped at (relative, as the iteration measures it), when it
+        /// was measured.
+        residual: Option<f64>,
+    },
+    /// The tip chatters (contacts or impacts accumulating) where the model has no limit
+    /// for it: a compliant stop beyond the per-period contact cap, a rigid law without a
+    /// sticking limit, or a sticking phase where a Jacobian is needed.
+    #[error("chatter: {0}")]
+    Chatter(String),
+    /// The caller asked the work to stop (Ctrl-C, a progress callback that raised).
+    #[error("interrupted")]
+    Interrupted,
     /// A run broke an invariant of the exact solution (an entry into contact moving away
     /// from the stop, say): its results would be wrong, so none are given.
     #[error("invariant violated: {0}")]
     Invariant(String),
+}
+
+impl Error {
+    /// The command line's exit status for this error, one per kind (documented in the
+    /// book's *Output formats* chapter and `cantilever --help`): 2 bad input, 3 no period,
+    /// 4 not converged, 5 chatter, 6 unsupported by the model or method, 130 interrupted,
+    /// 1 anything else (a file that cannot be written, a flow that cannot be built, a
+    /// broken invariant).
+    pub fn exit_code(&self) -> u8 {
+        match self {
+            Error::Parameter(_) => 2,
+            Error::NoPeriod(_) => 3,
+            Error::NotConverged { .. } => 4,
+            Error::Chatter(_) => 5,
+            Error::Unsupported(_) => 6,
+            Error::Interrupted => 130,
+            Error::Flow(_) | Error::Render(_) | Error::Io { .. } | Error::Invariant(_) => 1,
+        }
+    }
+
+    /// The kind's name, as the Python package's exception classes are named after it
+    /// (`parameter` → `ParameterError`, `no-period` → `NoPeriodError`, ...).
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Error::Parameter(_) => "parameter",
+            Error::NoPeriod(_) => "no-period",
+            Error::NotConverged { .. } => "not-converged",
+            Error::Chatter(_) => "chatter",
+            Error::Unsupported(_) => "unsupported",
+            Error::Interrupted => "interrupted",
+            Error::Flow(_) => "flow",
+            Error::Render(_) => "render",
+            Error::Io { .. } => "io",
+            Error::Invariant(_) => "invariant",
+        }
+    }
 }
 
 /// Why a region flow cannot be built.
@@ -101,6 +160,9 @@ pub fn number(x: f64) -> String {
 }
 
 /// `value` must be finite and ≥ 0.
+///
+/// # Errors
+/// [`ParameterError`] naming `name` when `value` is NaN, infinite or negative.
 pub fn finite_non_negative(name: &str, value: f64) -> Result<f64, ParameterError> {
     if value.is_finite() && value >= 0.0 {
         Ok(value)
@@ -114,6 +176,9 @@ pub fn finite_non_negative(name: &str, value: f64) -> Result<f64, ParameterError
 }
 
 /// `value` must be finite and > 0.
+///
+/// # Errors
+/// [`ParameterError`] naming `name` when `value` is NaN, infinite, zero or negative.
 pub fn finite_positive(name: &str, value: f64) -> Result<f64, ParameterError> {
     if value.is_finite() && value > 0.0 {
         Ok(value)
@@ -127,6 +192,9 @@ pub fn finite_positive(name: &str, value: f64) -> Result<f64, ParameterError> {
 }
 
 /// `value` must be finite (any sign).
+///
+/// # Errors
+/// [`ParameterError`] naming `name` when `value` is NaN or infinite.
 pub fn finite(name: &str, value: f64) -> Result<f64, ParameterError> {
     if value.is_finite() {
         Ok(value)
@@ -136,6 +204,9 @@ pub fn finite(name: &str, value: f64) -> Result<f64, ParameterError> {
 }
 
 /// `value` must lie in `1..=max`.
+///
+/// # Errors
+/// [`ParameterError`] naming `name` when `value` is 0 or above `max`.
 pub fn count_in_range(name: &str, value: usize, max: usize) -> Result<usize, ParameterError> {
     if (1..=max).contains(&value) {
         Ok(value)

@@ -25,11 +25,11 @@
 //!
 //! | band | modules | what |
 //! |---|---|---|
-//! | [`base`] | `numerics`, `verification`, `report`, `provenance`, `golden` | root finding and quadrature, refinement studies, cited numbers, build records, reference values |
-//! | [`model`] | `continuum`, `galerkin`, `fe`, `restitution`, `asymptotics`, `problems`, `experiment` | the paper's models as mathematics: eq (3) and its modes, the Galerkin matrices, the finite-element beam, the restitution laws, the asymptotics, named parameter sets, the rig |
-//! | [`engine`] | `flow`, `sim`, `dopri5`, `rigid`, `two_basis` | time integration: the exact flow of one region, the certified simulator, an independent Dormand–Prince integrator, the rigid-impact and two-basis models |
-//! | [`analysis`] | `orbit`, `shooting`, `impact_section`, `continuation`, `atlas`, `energetic`, `harmonics`, `convergence` | what is computed from runs: periodic orbits and their stability, branches, the atlas, r_E, spectra, refinement in N |
-//! | [`results`] | `scene`, `scenes`, `render`, `citation`, `diff`, `book` | the paper's results: scenes, plots and tables, citations, comparisons of key numbers, the book |
+//! | [`base`] | `numerics`, `newton`, `verification`, `report`, `provenance`, `golden`, `random`, `progress` | root finding and quadrature, the one Newton loop, refinement studies, cited numbers, build records, reference values, seeded random starts, progress and cancellation |
+//! | [`model`] | `continuum`, `galerkin`, `fe`, `forcing`, `restitution`, `asymptotics`, `problems`, `experiment`, `ranges`, `spec` | the paper's models as mathematics: eq (3) and its modes, the Galerkin matrices, the finite-element beam, the restitution laws, the asymptotics, named parameter sets, the rig, the supported ranges and the model as a user specifies it |
+//! | [`engine`] | `flow`, `sim`, `dopri5`, `rigid`, `two_basis`, `map`, `built` | time integration: the exact flow of one region, the certified simulator, an independent Dormand–Prince integrator, the rigid-impact and two-basis models, the one interface of every model and the model built from its specification |
+//! | [`analysis`] | `orbit`, `shooting`, `impact_section`, `continuation`, `atlas`, `energetic`, `harmonics`, `convergence`, `find_orbit`, `simulate`, `speed_bound` | what is computed from runs: periodic orbits and their stability, branches, the atlas, r_E, spectra, refinement in N, the simulation and orbit every front end runs, a bound on an orbit's tip speed |
+//! | [`results`] | `scene`, `scenes`, `render`, `marker`, `schematic`, `citation`, `cite`, `diff`, `files`, `peers`, `book` | the paper's results: scenes, plots and tables, citations, comparisons of key numbers, output files, other tools' results, the book |
 //!
 //! The `cantilever` command line (feature `cli`, on by default) lives in
 //! `src/bin/cantilever/`. The scenes and their plots need feature `plots` (on with `cli`);

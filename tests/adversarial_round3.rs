@@ -369,8 +369,11 @@ fn item_1_a_stiff_stop_costs_bounded_work_or_is_refused_with_the_reason() {
         "--periods",
         "1",
     ]);
-    assert_eq!(code, 1, "{err}");
-    assert!(err.contains("--model rigid"), "{err}");
+    assert_eq!(code, 5, "{err}");
+    assert!(
+        err.starts_with("error: chatter: ") && err.contains("--model rigid"),
+        "{err}"
+    );
 }
 
 #[test]

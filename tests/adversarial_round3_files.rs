@@ -49,7 +49,7 @@ fn item_9_atlas_merge_checks_every_field_of_a_shard() {
         (
             "kpoints",
             |v| v["params"]["k_points"] = 50_000_000.into(),
-            "k points",
+            "k_points",
         ),
         (
             "start",

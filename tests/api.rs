@@ -10,12 +10,15 @@ mod custom_model;
 mod find_orbit_example;
 #[path = "../examples/rigid_impact.rs"]
 mod rigid_impact;
+#[path = "../examples/use_cases.rs"]
+mod use_cases;
 
 #[test]
 fn the_examples_run() {
     custom_model::main().unwrap();
     find_orbit_example::main().unwrap();
     rigid_impact::main().unwrap();
+    use_cases::main().unwrap();
 }
 
 /// The model of `examples/find_orbit.rs`.

@@ -38,7 +38,9 @@ fn unknown_scene_is_rejected_with_the_list_of_scenes() {
 fn missing_arguments_are_named_on_the_one_line() {
     // clap lists them on the lines after its first; the one-line error kept only
     // "...were not provided:" with nothing after it
-    let (code, _, err) = cantilever(&["orbit", "--modes", "3", "--zeta1", "0.01", "--omega", "2"]);
+    let (code, _, err) = cantilever(&[
+        "simulate", "--modes", "3", "--zeta1", "0.01", "--omega", "2",
+    ]);
     assert_eq!(code, 2);
     assert_eq!(err.lines().count(), 1, "{err}");
     assert!(err.contains("--periods"), "{err}");

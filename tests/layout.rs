@@ -130,3 +130,45 @@ fn every_stated_rust_version_is_the_manifests() {
         "the README and the book state the toolchain ({seen} found)"
     );
 }
+
+/// The bands' module lists in the crate's doc (`src/lib.rs`) and the maintainer's guide
+/// (`CONTRIBUTING.md`) are the modules each band's `mod.rs` declares: none missing, none
+/// gone.
+#[test]
+fn the_band_tables_of_lib_rs_and_contributing_name_every_module() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let declared = |band: &str| -> Vec<String> {
+        let text = std::fs::read_to_string(root.join(format!("src/{band}/mod.rs"))).unwrap();
+        let mut v: Vec<String> = text
+            .lines()
+            .filter_map(|l| {
+                let l = l.trim();
+                l.strip_prefix("pub mod ")
+                    .or_else(|| l.strip_prefix("mod "))
+                    .map(|m| m.trim_end_matches(';').to_string())
+            })
+            .collect();
+        v.sort();
+        v
+    };
+    for (file, prefix) in [("src/lib.rs", "//! | [`"), ("CONTRIBUTING.md", "| `")] {
+        let text = std::fs::read_to_string(root.join(file)).unwrap();
+        let mut bands_seen = 0;
+        for band in ["base", "model", "engine", "analysis", "results"] {
+            let row_start = format!("{prefix}{band}`");
+            let row = text
+                .lines()
+                .find(|l| l.starts_with(&row_start))
+                .unwrap_or_else(|| panic!("{file}: a row for the band {band}"));
+            let cells: Vec<&str> = row.split('|').collect();
+            let mut listed: Vec<String> = cells[2]
+                .split(',')
+                .map(|m| m.trim().trim_matches('`').to_string())
+                .collect();
+            listed.sort();
+            assert_eq!(listed, declared(band), "{file}: the modules of {band}");
+            bands_seen += 1;
+        }
+        assert_eq!(bands_seen, 5);
+    }
+}

@@ -288,3 +288,73 @@ fn a_sticking_orbit_is_refused_with_the_reason() {
     let err = shooting::shoot(&model, &x, 1).unwrap_err();
     assert!(err.to_string().contains("sticks"), "{err}");
 }
+
+/// A plastic impact (r = 0) leaves the tip at rest on the stop: it sticks there while the
+/// stop pushes. It used to fly on from the surface, where the certified search sees no
+/// crossing, with the tip pressed 1 % of the gap beyond the stop for a whole period (found
+/// by the property test `the_rigid_tip_never_passes_the_stop`).
+#[test]
+fn a_plastic_impact_sticks_and_the_tip_never_passes_the_stop() {
+    use impacting_cantilever::analysis::simulate::{simulate, SimulateOptions};
+    use impacting_cantilever::base::progress::Silent;
+    use impacting_cantilever::engine::built::BuiltModel;
+    use impacting_cantilever::engine::rigid::RigidEvent;
+    use impacting_cantilever::model::spec::{
+        Cantilever, DampingReading, ForcingSpec, GapUnit, Law, ModelSpec, Start, Stop, Structure,
+    };
+    let spec = ModelSpec {
+        structure: Structure::Cantilever(Cantilever {
+            modes: 3,
+            gap: 0.0,
+            gap_unit: GapUnit::Free,
+            zeta1: 0.001,
+            damping_reading: DampingReading::Fig9,
+            viscous: 0.0,
+            omega: 1.4419247460661715,
+            forcing: ForcingSpec::Unit,
+        }),
+        stop: Stop::Rigid {
+            law: Law::ImpulseResponse,
+            restitution: 0.0,
+        },
+    };
+    let model = BuiltModel::build(&spec).unwrap();
+    let (rest, _) = model.start(&Start::Rest).unwrap();
+    let o = SimulateOptions {
+        periods: 0,
+        record: 3,
+        dense_per_period: Some(64),
+        ..SimulateOptions::default()
+    };
+    let s = simulate(&model, &rest, &o, &Silent).unwrap();
+    // no sample beyond the stop (d₀ = 0) but by round-off of the state's scale
+    let worst = s
+        .dense
+        .as_ref()
+        .unwrap()
+        .tip
+        .iter()
+        .fold(0.0f64, |m, &d| m.max(d));
+    assert!(worst <= 1e-15, "the tip {worst:e} beyond the stop");
+    // the first impact's outgoing tip speed is zero, and the tip then sticks: no run of
+    // micro-impacts with growing speeds (there were 40 in three periods)
+    assert!(s.events.len() <= 3, "{} impacts", s.events.len());
+    if let impacting_cantilever::engine::built::Variant::Rigid(r) = model.variant() {
+        let run = r
+            .run_until(
+                &rest,
+                impacting_cantilever::engine::sim::Clock::at_cycle(r.sim.period(), 0),
+                impacting_cantilever::engine::sim::Clock::at_cycle(r.sim.period(), 3),
+            )
+            .unwrap();
+        assert!(
+            run.events
+                .iter()
+                .any(|e| matches!(e, RigidEvent::StickStart { .. })),
+            "{:?}",
+            run.events
+        );
+    } else {
+        panic!("a rigid specification builds the rigid model");
+    }
+}

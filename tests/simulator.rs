@@ -55,7 +55,8 @@ fn reference_integrator_matches_the_closed_form_forced_oscillator() {
                 rtol,
                 atol: rtol * 1e-2,
             },
-        );
+        )
+        .unwrap();
         let err = (r.state[0] - xe).abs().max((r.state[1] - ve).abs() / w1());
         errors.push(err);
     }
@@ -121,7 +122,8 @@ fn contact_passage_times_match_the_closed_form() {
             rtol: 1e-12,
             atol: 1e-14,
         },
-    );
+    )
+    .unwrap();
     assert_eq!(r.events.len(), trace.events.len());
     for (a, b) in r.events.iter().zip(&trace.events) {
         // the reference's global error at rtol 1e-12 over ~30 passages
@@ -225,7 +227,8 @@ fn cross_verification_with_the_reference_integrator_on_figure_4() {
                 rtol: 1e-13,
                 atol: 1e-16,
             },
-        );
+        )
+        .unwrap();
         assert_eq!(r.events.len(), trace.events.len(), "N={n}: event counts");
         let mut worst: f64 = 0.0;
         for (a, b) in r.events.iter().zip(&trace.events) {
@@ -330,7 +333,8 @@ fn double_crossings_inside_one_fast_period_are_found() {
             rtol: 1e-12,
             atol: 1e-15,
         },
-    );
+    )
+    .unwrap();
     assert!(r.events.len() >= 2);
     for (a, b) in r.events.iter().zip(first_two) {
         assert!((a.time - b.time).abs() < 1e-9, "{} vs {}", a.time, b.time);
@@ -426,7 +430,7 @@ fn expm_grid_events(m: &GalerkinModel, x0: &DVector<f64>, t_end: f64, dt: f64) -
     z.rows_mut(0, 2 * n).copy_from(x0);
     z[2 * n] = 1.0;
     z[2 * n + 2] = 1.0;
-    let mut region = m.starting_region(x0, 0.0);
+    let mut region = m.starting_region(x0, 0.0).unwrap();
     let (mut t, mut events) = (0.0, Vec::new());
     while t < t_end {
         let h = dt.min(t_end - t);
@@ -494,25 +498,37 @@ fn stiff_cases_agree_with_an_exponential_grid_reference() {
 }
 
 #[test]
-fn observers_record_only_what_they_are_for() {
-    // events alone: no states unless asked for; the strobe forces period-long segments,
-    // events do not
+fn observers_record_only_what_they_are_for_and_change_nothing() {
+    // events alone: no states unless asked for
     let sim = Simulator::new(fig4(3)).unwrap();
     let mut events = Events::default();
     let plain = sim.run(&DVector::zeros(6), 20, &mut events).unwrap();
     assert!(!events.events.is_empty() && events.events.iter().all(|e| e.state.is_none()));
     let (mut with_states, mut strobe) = (Events::with_states(), Strobe::default());
+    let mut dense = Dense::new(7);
     let strobed = sim
-        .run(&DVector::zeros(6), 20, &mut (&mut with_states, &mut strobe))
+        .run(
+            &DVector::zeros(6),
+            20,
+            &mut (&mut with_states, &mut strobe, &mut dense),
+        )
         .unwrap();
     assert!(with_states.events.iter().all(|e| e.state.is_some()));
-    // one sample at the start and one per period
+    // one sample at the start and one per period; seven per period on the grid
     assert_eq!(strobe.samples.len(), 21);
-    assert!(strobed.stats.segments > plain.stats.segments);
-    // the same switches either way, to round-off
+    assert_eq!(dense.samples.len(), 20 * 7);
+    // observing changes nothing: the same segments, the same switches and the same final
+    // state, bit for bit (the strobe's states are taken inside segments, not by ending
+    // them at period boundaries)
+    assert_eq!(strobed.stats.segments, plain.stats.segments);
+    assert_eq!(strobed.state, plain.state);
     for (a, b) in events.events.iter().zip(&with_states.events) {
-        assert!((a.time - b.time).abs() < 1e-12 * a.time);
+        assert_eq!((a.time, a.tip_velocity), (b.time, b.tip_velocity));
     }
+    // and the strobe's last sample is the final state to round-off (it is the exact flow
+    // evaluated at the boundary inside the last segment, or that segment's end)
+    let last = &strobe.samples.last().unwrap().1;
+    assert!((last - &plain.state).amax() <= 1e-13 * plain.state.amax());
 }
 
 #[test]
@@ -563,13 +579,13 @@ fn a_start_at_rest_on_the_stop_begins_in_contact() {
     // accelerates the tip into the stop, so the run starts in contact with no event at 0.
     let m = fig4(3);
     assert_eq!(
-        m.starting_region(&DVector::zeros(6), 0.0),
+        m.starting_region(&DVector::zeros(6), 0.0).unwrap(),
         impacting_cantilever::model::galerkin::Region::Contact
     );
     // half a period later the forcing pulls outward: the same state starts in free flight
     let half = PI / (2.0 * w1());
     assert_eq!(
-        m.starting_region(&DVector::zeros(6), half),
+        m.starting_region(&DVector::zeros(6), half).unwrap(),
         impacting_cantilever::model::galerkin::Region::Free
     );
     let sim = Simulator::new(m).unwrap();

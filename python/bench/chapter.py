@@ -45,7 +45,7 @@ def error_example() -> None:
     try:
         ic.compliant(3, zeta1=0, omega=2)
     except ValueError as e:
-        text = f">>> {call}\nValueError: {e}\n"
+        text = f">>> {call}\nimpacting_cantilever.errors.{type(e).__name__}: {e}\n"
     else:
         raise AssertionError(f"{call} was accepted")
     (OUT / "error-example.txt").write_text(text)

@@ -13,13 +13,15 @@ number here is computed by the same code as the ``cantilever`` command line, bit
 
 Units (the paper's §5): time of the non-dimensional beam (EI = ρA = L = 1); stop stiffness k
 in units of k₁ = (β₁⁻)⁴ ≈ 12.36; forcing frequency ω in units of (β₁⁻)² ≈ 3.516; lengths in
-units of the free tip amplitude at resonance. Bad input raises ``ValueError`` with the
-library's one-line message (the parameter, what was given, what is allowed).
+units of the free tip amplitude at resonance. Each kind of failure raises its own class
+(:mod:`impacting_cantilever.errors`): bad input a ``ParameterError`` (also a ``ValueError``)
+with the library's one-line message (the parameter, what was given, what is allowed); no
+period a ``NoPeriodError``; Newton's failure a ``NotConvergedError``; and so on.
 """
 
 from __future__ import annotations
 
-from . import _core, atlas, citation, problems, scenes
+from . import _core, atlas, citation, errors, problems, scenes
 from ._api import (
     Progress,
     continue_branch,
@@ -64,6 +66,7 @@ __all__ = [
     "scenes",
     "atlas",
     "citation",
+    "errors",
     "Progress",
     "Simulation",
     "Events",

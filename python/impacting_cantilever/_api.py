@@ -4,6 +4,10 @@ with the interpreter released (other Python threads go on); a progress callback
 ``progress(what, done, total)`` is called about ten times a second where given (``total``
 is 0 when it is not known in advance). A callback that raises, or Ctrl-C, stops the work
 where it can stop early and raises when the call returns.
+
+Failures raise the class of their kind (:mod:`impacting_cantilever.errors`):
+``ParameterError`` (also a ``ValueError``) for bad input, ``NoPeriodError``,
+``NotConvergedError``, ``ChatterError``, ``UnsupportedError``, ...
 """
 
 from __future__ import annotations
@@ -14,6 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import _core
+from .errors import ParameterError
 from ._models import Model
 from ._results import (
     Continuation,
@@ -38,7 +43,7 @@ def _state(start: Optional[ArrayLike]) -> Optional[NDArray[np.float64]]:
         return None
     x = np.ascontiguousarray(start, dtype=np.float64)
     if x.ndim != 1:
-        raise ValueError(
+        raise ParameterError(
             f"invalid start: got an array of shape {x.shape}; allowed: a vector of 2N numbers [η; η̇]"
         )
     return x
@@ -55,6 +60,7 @@ def simulate(
     periodicity_tolerance: float = 1e-9,
     max_period: int = 32,
     progress: Progress = None,
+    energy: bool = True,
 ) -> Simulation:
     """Simulates the model exactly (§5.1–5.2): ``periods`` forcing periods discarded, then
     ``record`` periods recorded — what ``cantilever simulate`` does, to the bit.
@@ -67,21 +73,24 @@ def simulate(
             neither it nor ``seed`` is given.
         seed: start from the random state of this seed (``Model.random_state``).
         dense_per_period: dense output of the window, this many samples per forcing
-            period (1 to 10 000; at most 2.5e8 numbers in all, record × dense_per_period ×
+            period (1 to 10 000; at most 1e7 numbers in all, record × dense_per_period ×
             (2N + 4)): record × dense_per_period samples from the window's start, its end
             excluded (the end is the final state); None for none.
         periodicity_tolerance: relative tolerance of the period search on the strobe
             (§5.2's 1e-9).
         max_period: the largest period m searched (1 to 1000; also ≤ record/2).
         progress: ``progress(what, done, total)`` in forcing periods.
+        energy: the exact energy budget of the compliant model (about 20% of a run).
 
     Returns:
         A :class:`Simulation`: events as numpy arrays, dense output, the period m and
         contacts n, the certified max tip, the energy imbalance and the final state.
 
     Raises:
-        ValueError: bad input (the library's one-line message), or a run that would break
-            an invariant of the exact solution.
+        ParameterError: bad input (the library's one-line message).
+        ChatterError: a compliant stop beyond its contact cap, or a rigid run that stops
+            before its window.
+        InvariantError: a run that would break an invariant of the exact solution.
     """
     d = _core.simulate(
         model,
@@ -93,6 +102,7 @@ def simulate(
         periodicity_tolerance,
         max_period,
         progress,
+        energy,
     )
     d["events"] = Events(**d["events"])
     if d["dense"] is not None:
@@ -129,8 +139,9 @@ def find_orbit(
         restitution: also r_E (eq 39) over one period (compliant model only).
 
     Raises:
-        ValueError: bad input, no period within the window, or a Newton that does not
-            converge — with the library's message and the way out.
+        ParameterError: bad input. NoPeriodError: no period within the window.
+        NotConvergedError: Newton did not converge (``.residual``). UnsupportedError: r_E of
+        the rigid model. ChatterError: an orbit that chatters or sticks (rigid model).
     """
     d = _core.find_orbit(
         model,
@@ -148,7 +159,7 @@ def find_orbit(
 
 def continue_branch(
     model: Model,
-    parameter: Literal["stop_stiffness", "omega"],
+    parameter: Literal["stop_stiffness", "omega", "gap"],
     to: float,
     *,
     one_way: bool = False,
@@ -162,7 +173,7 @@ def continue_branch(
     progress: Progress = None,
 ) -> Continuation:
     """The branch of periodic orbits through the model's orbit, continued in k/k₁
-    (``"stop_stiffness"``) or ω/(β₁⁻)² (``"omega"``) by pseudo-arclength on the shooting
+    (``"stop_stiffness"``), ω/(β₁⁻)² (``"omega"``) or d₀ (``"gap"``) by pseudo-arclength on the shooting
     problem, with its folds, period doublings (followed to the doubled branch),
     Neimark–Sacker points and grazings — ``cantilever continue``, to the bit.
 
@@ -174,6 +185,10 @@ def continue_branch(
         doubling_up_to: follow period doublings up to this period (1 = none; up to 64).
         start, seed, transient, window, period: the start orbit, as in :func:`find_orbit`.
         progress: ``progress("continuation: orbits", models built, 0)``.
+
+    Raises:
+        UnsupportedError: the rigid-impact model or the oscillator (continuation is built
+            for the compliant cantilever). ParameterError: bad input.
     """
     d = _core.continue_branch(
         model,

@@ -8,6 +8,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 __version__: str
+DEFAULT_STOP_STIFFNESS: float
+DEFAULT_RESTITUTION: float
 
 _Progress = Optional[Callable[[str, int, int], object]]
 
@@ -104,6 +106,7 @@ def simulate(
     periodicity_tolerance: float,
     max_period: int,
     progress: _Progress,
+    energy: bool = ...,
 ) -> dict[str, Any]: ...
 def find_orbit(
     model: Model,

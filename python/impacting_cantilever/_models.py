@@ -13,6 +13,7 @@ from __future__ import annotations
 from typing import Any, Literal, Union
 
 from . import _core
+from .errors import ParameterError
 
 #: A model built by :func:`compliant`, :func:`rigid`, :func:`oscillator` or ``problems``.
 Model = _core.Model
@@ -26,7 +27,7 @@ def compliant(
     *,
     zeta1: float,
     omega: float,
-    stop_stiffness: float = 100.0,
+    stop_stiffness: float = _core.DEFAULT_STOP_STIFFNESS,
     gap: float = 0.0,
     gap_unit: Literal["resonance", "free"] = "resonance",
     damping_reading: Literal["fig9", "fig4-literal"] = "fig9",
@@ -53,20 +54,26 @@ def compliant(
             φ₁(s): modal force f₁ cos ωt on mode 1 alone).
 
     Raises:
-        ValueError: a parameter out of range, with the library's one-line message.
+        ParameterError: a parameter out of range, with the library's one-line message
+            (also a ``ValueError``).
     """
     return _core.compliant(
         modes, stop_stiffness, gap, zeta1, omega, gap_unit, damping_reading, viscous, forcing
     )
 
 
-def rigid(base: Model, *, law: Law = "stiffness-limit", restitution: float = 0.8) -> Model:
+def rigid(
+    base: Model,
+    *,
+    law: Law = "stiffness-limit",
+    restitution: float = _core.DEFAULT_RESTITUTION,
+) -> Model:
     """The same beam against a rigid stop: the rigid-impact model of §3 with a modal
     restitution law [R], η̇⁺ = −[R]η̇⁻ at each impact (eq 11).
 
     Args:
         base: the beam (a :func:`compliant` model, a named problem or an oscillator); its
-            stop stiffness is not used.
+            stop stiffness is not part of the rigid model (``parameters()`` omits it).
         law: ``"stiffness-limit"`` ([R]_N, eq 29, with r_e = ``restitution``),
             ``"impulse-response"`` ([R]_IR, eq 14), ``"collocation"`` ([R]_C, eq 12, equally
             spaced points) or ``"newton"`` (η̇⁺ = −rη̇⁻, N = 1 only).
@@ -121,7 +128,7 @@ def replace(model: Model, **changes: Any) -> Model:
     allowed = set(p) - {"model"} | {"law", "restitution"}
     unknown = set(changes) - allowed
     if unknown:
-        raise ValueError(
+        raise ParameterError(
             f"invalid parameter {sorted(unknown)[0]}: got a value; "
             f"allowed: one of {', '.join(sorted(allowed))}"
         )

@@ -96,9 +96,12 @@ class Simulation:
     max_tip: Optional[float]
     max_tip_time: Optional[float]
     max_tip_tolerance: Optional[float]
-    #: The unaccounted part of the exact energy budget of the whole run, relative (compliant).
+    #: The unaccounted part of the exact energy budget of the whole run, relative (compliant,
+    #: with ``energy=True``).
     energy_imbalance: Optional[float]
-    #: The larger eigenvector condition of the region flows (accurate to ~ this × 2.2e-16).
+    #: What round-off explains of it: κε√(segments + 1).
+    energy_imbalance_bound: Optional[float]
+    #: The eigenvector condition of the flows the model uses (accurate to ~ this × 2.2e-16).
     eigenvector_condition: float
     #: "completed", or why a rigid run stopped early.
     outcome: str

@@ -71,8 +71,6 @@ pub fn matrix<'py, 'a, T: numpy::Element + Copy + 'a>(
 /// returns (work that can stop early stops at its next check of [`Reporter::stopped`]).
 pub struct Reporter {
     callback: Option<Py<PyAny>>,
-    /// Whether to attach to the interpreter at all (false: a silent run for timing).
-    attach: bool,
     error: Mutex<Option<PyErr>>,
     stopped: AtomicBool,
     last: Mutex<Option<Instant>>,
@@ -86,18 +84,9 @@ impl Reporter {
     pub fn new(callback: Option<Py<PyAny>>) -> Self {
         Self {
             callback,
-            attach: true,
             error: Mutex::new(None),
             stopped: AtomicBool::new(false),
             last: Mutex::new(None),
-        }
-    }
-
-    /// A reporter that never touches the interpreter (for timing the pure-Rust call).
-    pub fn silent() -> Self {
-        Self {
-            attach: false,
-            ..Self::new(None)
         }
     }
 
@@ -108,14 +97,20 @@ impl Reporter {
 
     /// Reports `done` of `total` units of `what` (throttled unless `done == total`).
     pub fn report(&self, what: &str, done: u64, total: u64) {
-        if !self.attach || self.stopped() {
+        self.report_unless_throttled(what, done, total, false)
+    }
+
+    /// [`Self::report`], never throttled when `now` (a task's first unit: the callback then
+    /// sees the work start moving at once, and can stop it).
+    fn report_unless_throttled(&self, what: &str, done: u64, total: u64, first: bool) {
+        if self.stopped() {
             return;
         }
         {
             let mut last = self.last.lock().unwrap_or_else(|p| p.into_inner());
             let now = Instant::now();
             let due = last.is_none_or(|t| now.duration_since(t) >= THROTTLE);
-            if !(due || done == total) {
+            if !(due || first || done == total) {
                 return;
             }
             *last = Some(now);
@@ -139,7 +134,7 @@ impl Reporter {
         let error = self.error.into_inner().unwrap_or_else(|p| p.into_inner());
         match error {
             Some(e) => Err(e),
-            None => result.map_err(crate::value_error),
+            None => result.map_err(crate::py_error),
         }
     }
 }
@@ -154,12 +149,17 @@ struct Counted<'a> {
 
 impl Task for Counted<'_> {
     fn advance(&self, units: u64) {
-        let done = self.done.fetch_add(units, Ordering::Relaxed) + units;
-        self.reporter.report(&self.what, done, self.total);
+        let before = self.done.fetch_add(units, Ordering::Relaxed);
+        let done = before + units;
+        self.reporter
+            .report_unless_throttled(&self.what, done, self.total, before == 0);
     }
 }
 
 impl Progress for Reporter {
+    fn cancelled(&self) -> bool {
+        self.stopped()
+    }
     fn task(&self, what: &str, total: u64) -> Box<dyn Task + '_> {
         self.report(what, 0, total);
         Box::new(Counted {

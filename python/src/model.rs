@@ -1,6 +1,7 @@
-//! Models: the compliant N-mode cantilever (eq 34), the rigid-impact model with a law (§3),
-//! the one-mode impact oscillator and the paper's named problems, validated against the
-//! ranges the `cantilever` command line supports, with its messages.
+//! Models: keyword arguments mapped onto the library's [`ModelSpec`] (the compliant N-mode
+//! cantilever, eq 34; the rigid-impact model with a law, §3; the one-mode impact
+//! oscillator; the paper's named problems) and built by the library
+//! ([`BuiltModel::build`]), with its ranges and messages.
 //!
 //! Units, as on the command line: time of the non-dimensional beam (EI = ρA = L = 1); the
 //! stop stiffness k in units of k₁ = (β₁⁻)⁴; the forcing frequency ω in units of (β₁⁻)²;
@@ -8,182 +9,69 @@
 //! eq (37) forcing), or — with `gap_unit = "free"` — d₀ in units of A_free(ω), the free tip
 //! amplitude at the forcing frequency.
 
-pub use crate::spec::{count, range, Cantilever, ForcingSpec, Law, MAX_PERIODS, MAX_RECORD};
-use crate::spec::{tiny, MAX_STATE, MIN_SCALE};
-use crate::{bad, value_error, Res};
-use impacting_cantilever::analysis::orbit::{random_state, SplitMix64};
-use impacting_cantilever::engine::rigid::{beyond_the_stop, RigidImpact};
-use impacting_cantilever::engine::sim::Simulator;
-use impacting_cantilever::error::{self, Error, ParameterError};
-use impacting_cantilever::model::galerkin::{
-    self, first_frequency, first_modal_stiffness, GalerkinModel, Oscillator, Region,
-};
+use crate::{bad, py_error, Res};
+use impacting_cantilever::engine::built::{BuiltModel, Variant};
+use impacting_cantilever::model::galerkin::{first_frequency, first_modal_stiffness, Region};
 use impacting_cantilever::model::problems;
+use impacting_cantilever::model::ranges;
+use impacting_cantilever::model::spec::{
+    Cantilever, DampingReading, ForcingSpec, GapUnit, Law, ModelSpec, Named, OscillatorSpec, Start,
+    Stop, Structure,
+};
 use nalgebra::{DMatrix, DVector};
 use numpy::{PyArray1, PyArray2, PyReadonlyArray1, ToPyArray};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-/// What the model is.
-#[derive(Debug, Clone)]
-pub enum Beam {
-    Cantilever(Cantilever),
-    Oscillator(Oscillator),
-}
-
-/// A model: the compliant model, or the rigid-impact model with its law.
+/// A model built from its specification.
 #[pyclass(frozen, module = "impacting_cantilever._core")]
 pub struct Model {
-    pub beam: Beam,
-    pub law: Option<(Law, f64)>,
-    pub sim: Simulator,
-    pub rigid: Option<RigidImpact>,
+    pub built: BuiltModel,
 }
 
 impl Model {
-    fn build(beam: Beam, law: Option<(Law, f64)>) -> Result<Self, Error> {
-        let galerkin = match &beam {
-            Beam::Cantilever(c) => c.model()?,
-            Beam::Oscillator(o) => GalerkinModel::oscillator(o)?,
-        };
-        let n = galerkin.modes();
-        let sim = Simulator::new(galerkin)?;
-        let rigid = match law {
-            None => None,
-            Some((kind, r)) => {
-                range("restitution (r)", r, (0.0, 1.0))?;
-                if kind == Law::Newton && n != 1 {
-                    return Err(ParameterError::new(
-                        "law newton",
-                        format!("N = {n}"),
-                        "N = 1 (for N > 1 choose stiffness-limit, impulse-response or collocation)",
-                    )
-                    .into());
-                }
-                Some(RigidImpact::new(sim.clone(), kind.matrix(n, r)?)?)
-            }
-        };
+    fn build(spec: &ModelSpec) -> Res<Self> {
         Ok(Self {
-            beam,
-            law,
-            sim,
-            rigid,
+            built: BuiltModel::build(spec).map_err(py_error)?,
         })
     }
 
     /// N.
     pub fn n(&self) -> usize {
-        self.sim.model().modes()
+        self.built.modes()
     }
 
-    /// "compliant" or "rigid".
-    pub fn kind_name(&self) -> &'static str {
-        if self.rigid.is_some() {
-            "rigid"
-        } else {
-            "compliant"
-        }
-    }
-
-    /// The compliant cantilever's parameters (None for the oscillator).
-    pub fn cantilever(&self) -> Option<&Cantilever> {
-        match &self.beam {
-            Beam::Cantilever(c) => Some(c),
-            Beam::Oscillator(_) => None,
-        }
-    }
-
-    /// The start state: given (checked as the command line checks `--initial-state`), from
-    /// a seed (`--seed`), or rest; and where it came from.
+    /// The start state: given, from a seed, or rest; and where it came from — checked by
+    /// the library as the command line's `--initial-state` and `--seed` are.
     pub fn start(
         &self,
         start: Option<PyReadonlyArray1<'_, f64>>,
         seed: Option<u64>,
     ) -> Res<(DVector<f64>, String)> {
-        let n = self.n();
-        let (x, from) = match (start, seed) {
-            (Some(_), Some(_)) => {
-                return Err(bad(
-                    "start/seed",
-                    "both",
-                    "a start state or a seed, not both",
-                ))
-            }
-            (Some(a), None) => {
-                let x: Vec<f64> = a.as_array().iter().copied().collect();
-                if x.len() != 2 * n {
-                    return Err(bad(
-                        "start",
-                        format!("{} numbers", x.len()),
-                        &format!("2N = {} numbers [η; η̇]", 2 * n),
-                    ));
-                }
-                if x.iter().any(|v| !v.is_finite()) {
-                    return Err(bad("start", "the state", "an array of finite numbers"));
-                }
-                (DVector::from_vec(x), "state given".to_string())
-            }
-            (None, Some(seed)) => {
-                let x = self.seeded_state(seed);
-                // a rigid stop cannot be penetrated: name the seed that drew the tip beyond it
-                if self.rigid.is_some() {
-                    if let Some(beyond) = beyond_the_stop(self.sim.model(), &x) {
-                        return Err(bad(
-                            "seed",
-                            seed,
-                            &format!(
-                                "a seed whose random start has the tip at or before the rigid \
-                                 stop (this one puts it {} beyond d₀; at d₀ = 0 about half the \
-                                 seeds do): another seed, or a start state of your own",
-                                error::number(beyond)
-                            ),
-                        ));
-                    }
-                }
-                (x, format!("random state, seed {seed}"))
-            }
-            (None, None) => {
-                if let (Some(_), Some(c)) = (&self.rigid, self.cantilever()) {
-                    if c.gap < 0.0 {
-                        return Err(bad(
-                            "gap (d₀)",
-                            error::number(c.gap),
-                            "a number ≥ 0 for the rigid model from rest (at rest the tip would \
-                             start beyond a rigid stop, which cannot be penetrated; a preloaded \
-                             stop, d₀ < 0, is the compliant model's)",
-                        ));
-                    }
-                }
-                (DVector::zeros(2 * n), "rest".to_string())
-            }
-        };
-        let size = x.amax();
-        if size > MAX_STATE {
-            return Err(bad(
-                "start",
-                format!("a state of size {}", error::number(size)),
-                "entries of magnitude at most 1e6 (lengths in units of the free tip amplitude at resonance, as |d₀| ≤ 1e6)",
-            ));
-        }
-        if size > 0.0 && size < MIN_SCALE {
-            return Err(value_error(tiny("start", size)));
-        }
-        Ok((x, from))
+        self.built.start(&start_of(start, seed)?).map_err(py_error)
     }
+}
 
-    fn seeded_state(&self, seed: u64) -> DVector<f64> {
-        let m = self.sim.model();
-        let (amp, _) = m.free_tip_amplitude();
-        let mut rng = SplitMix64::for_point(seed, m.modes() as u64, 0, 0);
-        random_state(&mut rng, m.modes(), 4.0 * amp, m.omega())
-    }
+/// The library's start from the `start` and `seed` arguments (rest when neither is given).
+pub fn start_of(start: Option<PyReadonlyArray1<'_, f64>>, seed: Option<u64>) -> Res<Start> {
+    Ok(match (start, seed) {
+        (Some(_), Some(_)) => {
+            return Err(bad(
+                "start/seed",
+                "both",
+                "a start state or a seed, not both",
+            ))
+        }
+        (Some(a), None) => Start::State(a.as_array().iter().copied().collect()),
+        (None, Some(seed)) => Start::Seed(seed),
+        (None, None) => Start::Rest,
+    })
 }
 
 fn forcing_spec(forcing: &Bound<'_, PyAny>) -> Res<ForcingSpec> {
     if let Ok(text) = forcing.extract::<String>() {
         return match text.as_str() {
-            "unit" => Ok(ForcingSpec::Unit),
-            "printed" => Ok(ForcingSpec::Printed),
+            "unit" | "printed" => ForcingSpec::parse(&text).map_err(py_error),
             other => Err(bad("forcing", other, "unit, printed, or a number f₁")),
         };
     }
@@ -194,20 +82,6 @@ fn forcing_spec(forcing: &Bound<'_, PyAny>) -> Res<ForcingSpec> {
             forcing.repr().map(|r| r.to_string()).unwrap_or_default(),
             "unit, printed, or a number f₁",
         )),
-    }
-}
-
-fn choice(name: &str, value: &str, options: [&str; 2]) -> Res<bool> {
-    if value == options[0] {
-        Ok(false)
-    } else if value == options[1] {
-        Ok(true)
-    } else {
-        Err(bad(
-            name,
-            value,
-            &format!("{} or {}", options[0], options[1]),
-        ))
     }
 }
 
@@ -226,25 +100,28 @@ pub fn compliant(
     viscous: f64,
     forcing: &Bound<'_, PyAny>,
 ) -> Res<Model> {
-    let spec = Cantilever {
-        modes: count("modes (N)", modes, galerkin::MAX_MODES).map_err(value_error)?,
-        stop_stiffness,
-        gap,
-        gap_over_free: choice("gap_unit", gap_unit, ["resonance", "free"])?,
-        zeta1,
-        fig4_literal: choice("damping_reading", damping_reading, ["fig9", "fig4-literal"])?,
-        viscous,
-        omega,
-        forcing: forcing_spec(forcing)?,
+    let spec = ModelSpec {
+        structure: Structure::Cantilever(Cantilever {
+            modes: ranges::MODES.check(modes.into()).map_err(py_error)? as usize,
+            gap,
+            gap_unit: GapUnit::parse(gap_unit).map_err(py_error)?,
+            zeta1,
+            damping_reading: DampingReading::parse(damping_reading).map_err(py_error)?,
+            viscous,
+            omega,
+            forcing: forcing_spec(forcing)?,
+        }),
+        stop: Stop::Compliant { stop_stiffness },
     };
-    Model::build(Beam::Cantilever(spec), None).map_err(value_error)
+    Model::build(&spec)
 }
 
-/// The same beam against a rigid stop with an impact law.
+/// The same structure against a rigid stop with an impact law (its stop stiffness is not
+/// part of the rigid model).
 #[pyfunction]
 pub fn rigid(base: &Model, law: &str, restitution: f64) -> Res<Model> {
-    let law = Law::parse(law).map_err(value_error)?;
-    Model::build(base.beam.clone(), Some((law, restitution))).map_err(value_error)
+    let law = Law::parse(law).map_err(py_error)?;
+    Model::build(&base.built.spec().rigid(law, restitution))
 }
 
 /// The one-degree-of-freedom impact oscillator ẍ + cẋ + kx = F cos ωt, stop at gx = d₀.
@@ -259,16 +136,17 @@ pub fn oscillator(
     gap: f64,
     stop_stiffness: f64,
 ) -> Res<Model> {
-    let o = Oscillator {
-        stiffness,
-        damping,
-        forcing,
-        omega,
-        tip_gain,
-        gap,
-        stop_stiffness,
-    };
-    Model::build(Beam::Oscillator(o), None).map_err(value_error)
+    Model::build(&ModelSpec {
+        structure: Structure::Oscillator(OscillatorSpec {
+            stiffness,
+            damping,
+            forcing,
+            omega,
+            tip_gain,
+            gap,
+        }),
+        stop: Stop::Compliant { stop_stiffness },
+    })
 }
 
 /// A named problem of the paper (`figure4`, `figure6a`, `figure6b`, `figure9`,
@@ -282,7 +160,7 @@ pub fn problem(
     zeta1: Option<f64>,
     omega: Option<f64>,
 ) -> Res<Model> {
-    let n = count("modes (N)", modes, galerkin::MAX_MODES).map_err(value_error)?;
+    let n = ranges::MODES.check(modes.into()).map_err(py_error)? as usize;
     let need = |what: &str, v: Option<f64>| {
         v.ok_or_else(|| bad(what, "nothing", &format!("a number for problem {name}")))
     };
@@ -302,22 +180,7 @@ pub fn problem(
             ))
         }
     };
-    let spec = Cantilever {
-        modes: forced.modes,
-        stop_stiffness: forced.k_over_k1,
-        gap: forced.gap,
-        gap_over_free: false,
-        zeta1: forced.zeta1,
-        fig4_literal: false,
-        viscous: 0.0,
-        omega: forced.omega_over_w1,
-        forcing: if forced.printed_eq37_amplitude {
-            ForcingSpec::Printed
-        } else {
-            ForcingSpec::Unit
-        },
-    };
-    Model::build(Beam::Cantilever(spec), None).map_err(value_error)
+    Model::build(&ModelSpec::from(forced))
 }
 
 /// The units of the model: (β₁⁻)² (the frequency unit) and k₁ = (β₁⁻)⁴ (the stiffness unit).
@@ -326,7 +189,7 @@ pub fn units() -> (f64, f64) {
     (first_frequency(), first_modal_stiffness())
 }
 
-fn diagonal<'py>(py: Python<'py>, v: &DVector<f64>) -> Bound<'py, PyArray1<f64>> {
+fn vector<'py>(py: Python<'py>, v: &DVector<f64>) -> Bound<'py, PyArray1<f64>> {
     PyArray1::from_slice(py, v.as_slice())
 }
 
@@ -340,7 +203,7 @@ impl Model {
     /// "compliant" or "rigid".
     #[getter]
     fn kind(&self) -> &'static str {
-        self.kind_name()
+        self.built.spec().kind()
     }
 
     /// N, the number of modes.
@@ -352,23 +215,18 @@ impl Model {
     /// The parameters as given (keyword arguments of the constructor), with `model`.
     fn parameters<'py>(&self, py: Python<'py>) -> Res<Bound<'py, PyDict>> {
         let d = PyDict::new(py);
-        match &self.beam {
-            Beam::Cantilever(c) => {
+        let spec = self.built.spec();
+        match &spec.structure {
+            Structure::Cantilever(c) => {
                 d.set_item("model", "cantilever")?;
                 d.set_item("modes", c.modes)?;
-                d.set_item("stop_stiffness", c.stop_stiffness)?;
+                if let Stop::Compliant { stop_stiffness } = spec.stop {
+                    d.set_item("stop_stiffness", stop_stiffness)?;
+                }
                 d.set_item("gap", c.gap)?;
-                d.set_item(
-                    "gap_unit",
-                    if c.gap_over_free { "free" } else { "resonance" },
-                )?;
+                d.set_item("gap_unit", c.gap_unit.name())?;
                 d.set_item("zeta1", c.zeta1)?;
-                let reading = if c.fig4_literal {
-                    "fig4-literal"
-                } else {
-                    "fig9"
-                };
-                d.set_item("damping_reading", reading)?;
+                d.set_item("damping_reading", c.damping_reading.name())?;
                 d.set_item("viscous", c.viscous)?;
                 d.set_item("omega", c.omega)?;
                 match c.forcing {
@@ -377,7 +235,7 @@ impl Model {
                     ForcingSpec::Modal(f) => d.set_item("forcing", f)?,
                 }
             }
-            Beam::Oscillator(o) => {
+            Structure::Oscillator(o) => {
                 d.set_item("model", "oscillator")?;
                 d.set_item("stiffness", o.stiffness)?;
                 d.set_item("damping", o.damping)?;
@@ -385,12 +243,14 @@ impl Model {
                 d.set_item("omega", o.omega)?;
                 d.set_item("tip_gain", o.tip_gain)?;
                 d.set_item("gap", o.gap)?;
-                d.set_item("stop_stiffness", o.stop_stiffness)?;
+                if let Stop::Compliant { stop_stiffness } = spec.stop {
+                    d.set_item("stop_stiffness", stop_stiffness)?;
+                }
             }
         }
-        if let Some((law, r)) = self.law {
+        if let Stop::Rigid { law, restitution } = spec.stop {
             d.set_item("law", law.name())?;
-            d.set_item("restitution", r)?;
+            d.set_item("restitution", restitution)?;
         }
         Ok(d)
     }
@@ -398,37 +258,40 @@ impl Model {
     /// T = 2π/ω, the forcing period (non-dimensional beam time).
     #[getter]
     fn period(&self) -> f64 {
-        self.sim.period()
+        self.built.simulator().period()
     }
 
     /// ω, the forcing frequency in the model's time unit (not in units of (β₁⁻)²).
     #[getter]
     fn angular_frequency(&self) -> f64 {
-        self.sim.omega()
+        self.built.simulator().omega()
     }
 
     /// d₀, the gap in the model's length unit (the free tip amplitude at resonance).
     #[getter]
     fn gap_length(&self) -> f64 {
-        self.sim.model().params().gap
+        self.built.galerkin().params().gap
     }
 
     /// (A_free, ωA_free): the tip amplitude and velocity amplitude of the forced response
     /// without the stop, at the forcing frequency.
     #[getter]
     fn free_tip_amplitude(&self) -> (f64, f64) {
-        self.sim.model().free_tip_amplitude()
+        self.built.galerkin().free_tip_amplitude()
     }
 
-    /// The larger eigenvector condition of the two region flows (accurate to ~ this × ε).
+    /// The eigenvector condition of the flows the model uses (results good to ~ this × ε).
     #[getter]
     fn condition(&self) -> f64 {
-        self.sim.condition()
+        self.built.condition()
     }
 
     /// The rigid model's law [R] (N × N), or None.
     fn law_matrix<'py>(&self, py: Python<'py>) -> Res<Option<Bound<'py, PyArray2<f64>>>> {
-        self.rigid.as_ref().map(|r| dense(py, &r.law)).transpose()
+        match self.built.variant() {
+            Variant::Rigid(r) => dense(py, &r.law).map(Some),
+            Variant::Compliant(_) => Ok(None),
+        }
     }
 
     /// The state at rest, zeros(2N).
@@ -437,9 +300,11 @@ impl Model {
     }
 
     /// The random start of seed `seed`: each η_j uniform in ±2A_free/N, η̇_j in ±2ωA_free/N
-    /// (as `cantilever simulate --seed`).
-    fn random_state<'py>(&self, py: Python<'py>, seed: u64) -> Bound<'py, PyArray1<f64>> {
-        diagonal(py, &self.seeded_state(seed))
+    /// (as `cantilever simulate --seed`; the rigid model refuses a seed that puts the tip
+    /// beyond its stop).
+    fn random_state<'py>(&self, py: Python<'py>, seed: u64) -> Res<Bound<'py, PyArray1<f64>>> {
+        let (x, _) = self.built.start(&Start::Seed(seed)).map_err(py_error)?;
+        Ok(vector(py, &x))
     }
 
     /// The modal state [η; η̇] of displacement and velocity profiles w(s), w_t(s) sampled at
@@ -452,45 +317,17 @@ impl Model {
         w: Vec<f64>,
         w_t: Vec<f64>,
     ) -> Res<Bound<'py, PyArray1<f64>>> {
-        let wt = w_t;
-        let finite = |v: &[f64]| v.iter().all(|x| x.is_finite());
-        let sorted = s.windows(2).all(|p| p[1] > p[0]);
-        if s.len() < 2
-            || !sorted
-            || !(finite(&s) && finite(&w) && finite(&wt))
-            || s[0] > 0.0
-            || s[s.len() - 1] < 1.0
-            || w.len() != s.len()
-            || wt.len() != s.len()
-        {
-            return Err(bad(
-                "profile",
-                format!(
-                    "s, w, w_t of lengths {}, {}, {}",
-                    s.len(),
-                    w.len(),
-                    wt.len()
-                ),
-                "finite s increasing from ≤ 0 to ≥ 1, with w and w_t of the same length",
-            ));
-        }
-        let interpolate = |values: &[f64], x: f64| {
-            let i = s.partition_point(|&p| p <= x).clamp(1, s.len() - 1);
-            let t = (x - s[i - 1]) / (s[i] - s[i - 1]);
-            values[i - 1] + t * (values[i] - values[i - 1])
-        };
-        let x = self
-            .sim
-            .model()
-            .modal_state(&|x| interpolate(&w, x), &|x| interpolate(&wt, x))
-            .map_err(value_error)?;
-        Ok(diagonal(py, &x))
+        let (x, _) = self
+            .built
+            .start(&Start::Profile { s, w, w_t })
+            .map_err(py_error)?;
+        Ok(vector(py, &x))
     }
 
     /// The model's matrices: K⁻ and K⁺ (stiffness in free flight and in contact), C
     /// (damping), the modal forcing amplitudes f_j, and φ(1) (each mode's tip value).
     fn matrices<'py>(&self, py: Python<'py>) -> Res<Bound<'py, PyDict>> {
-        let m = self.sim.model();
+        let m = self.built.galerkin();
         let d = PyDict::new(py);
         d.set_item("stiffness_free", dense(py, &m.stiffness(Region::Free))?)?;
         d.set_item(
@@ -498,8 +335,8 @@ impl Model {
             dense(py, &m.stiffness(Region::Contact))?,
         )?;
         d.set_item("damping", dense(py, &m.damping_matrix())?)?;
-        d.set_item("forcing", diagonal(py, m.forcing_amplitude()))?;
-        d.set_item("tip", diagonal(py, m.tip()))?;
+        d.set_item("forcing", vector(py, m.forcing_amplitude()))?;
+        d.set_item("tip", vector(py, m.tip()))?;
         Ok(d)
     }
 
@@ -512,24 +349,46 @@ impl Model {
     }
 
     fn __repr__(&self) -> String {
-        let law = match self.law {
-            Some((law, r)) => format!(", rigid stop, law {}, r = {r}", law.name()),
-            None => String::new(),
+        let spec = self.built.spec();
+        let (stop, law) = match spec.stop {
+            Stop::Rigid { law, restitution } => (
+                String::new(),
+                format!(", rigid stop, law {}, r = {restitution}", law.name()),
+            ),
+            Stop::Compliant { stop_stiffness } => (format!("{stop_stiffness}"), String::new()),
         };
-        match &self.beam {
-            Beam::Cantilever(c) => format!(
-                "Model(N = {}, k = {}k₁, d₀ = {}{}, ζ₁ = {}, α = {}, ω = {}(β₁⁻)²{law})",
+        match &spec.structure {
+            Structure::Cantilever(c) => format!(
+                "Model(N = {}, {}d₀ = {}{}, ζ₁ = {}, α = {}, ω = {}(β₁⁻)²{law})",
                 c.modes,
-                c.stop_stiffness,
+                if stop.is_empty() {
+                    String::new()
+                } else {
+                    format!("k = {stop}k₁, ")
+                },
                 c.gap,
-                if c.gap_over_free { "·A_free(ω)" } else { "" },
+                if c.gap_unit == GapUnit::Free {
+                    "·A_free(ω)"
+                } else {
+                    ""
+                },
                 c.zeta1,
                 c.viscous,
                 c.omega
             ),
-            Beam::Oscillator(o) => format!(
-                "Model(impact oscillator: k = {}, c = {}, F = {}, ω = {}, g = {}, d₀ = {}, k_s = {}{law})",
-                o.stiffness, o.damping, o.forcing, o.omega, o.tip_gain, o.gap, o.stop_stiffness
+            Structure::Oscillator(o) => format!(
+                "Model(impact oscillator: k = {}, c = {}, F = {}, ω = {}, g = {}, d₀ = {}{}{law})",
+                o.stiffness,
+                o.damping,
+                o.forcing,
+                o.omega,
+                o.tip_gain,
+                o.gap,
+                if stop.is_empty() {
+                    String::new()
+                } else {
+                    format!(", k_s = {stop}")
+                }
             ),
         }
     }

@@ -4,14 +4,14 @@
 //! into exactly the atlas one process computes).
 
 use crate::convert::{json_to_py, Reporter};
-use crate::{bad, value_error, Res};
-use impacting_cantilever::analysis::atlas::{self, AtlasParams, Partial, Shard};
+use crate::{bad, py_error, Res};
+use impacting_cantilever::analysis::atlas::{self, AtlasParams, Shard};
 use impacting_cantilever::base::provenance::Provenance;
 use impacting_cantilever::error::Error;
 use impacting_cantilever::results::citation;
 use impacting_cantilever::results::cite::{Citation, CiteError};
 use impacting_cantilever::results::scene::{self, Entry, Resolution, Scene, SceneOutput};
-use impacting_cantilever::results::scenes::{self, atlas::Atlas};
+use impacting_cantilever::results::scenes::{self, atlas::shards, atlas::Atlas};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -94,14 +94,14 @@ impl SceneRun {
     /// (as `cantilever scene NAME --out DIR` does).
     fn write(&self, py: Python<'_>, dir: PathBuf) -> Res<()> {
         py.detach(|| scene::write(self.spec, &self.out, &dir))
-            .map_err(value_error)
+            .map_err(py_error)
     }
 
     /// The citation of one key number (or of all of them) of this run, as `cantilever cite
     /// --recompute` prints it.
     #[pyo3(signature = (key=None))]
     fn cite(&self, key: Option<&str>) -> Res<String> {
-        let c = Citation::of_output(self.spec, &self.out, key).map_err(value_error)?;
+        let c = Citation::of_output(self.spec, &self.out, key).map_err(py_error)?;
         Ok(c.to_text())
     }
 
@@ -127,7 +127,7 @@ pub fn scene_run(
     out: Option<PathBuf>,
     progress: Option<Py<PyAny>>,
 ) -> Res<SceneRun> {
-    let spec = scenes::find(name).map_err(value_error)?;
+    let spec = scenes::find(name).map_err(py_error)?;
     let r = self::resolution(resolution)?;
     if let Some(dir) = &out {
         // refused before the work, as `cantilever scene --out` refuses it
@@ -153,9 +153,9 @@ pub fn scene_run(
 #[pyfunction]
 #[pyo3(signature = (scene, key=None))]
 pub fn cite(scene: &str, key: Option<&str>) -> Res<String> {
-    let spec = scenes::find(scene).map_err(value_error)?;
+    let spec = scenes::find(scene).map_err(py_error)?;
     let c = Citation::published(spec, key).map_err(|e| match e {
-        CiteError::Key(p) => value_error(p),
+        CiteError::Key(p) => py_error(p),
         CiteError::Unpublished(s) => PyValueError::new_err(s),
     })?;
     Ok(c.to_text())
@@ -180,7 +180,7 @@ pub fn citations(py: Python<'_>) -> Res<Bound<'_, PyDict>> {
 fn params_of(text: &str) -> Res<AtlasParams> {
     let p: AtlasParams = serde_json::from_str(text)
         .map_err(|e| bad("atlas parameters", e, "the fields of atlas.params()"))?;
-    p.validate().map_err(value_error)?;
+    p.validate().map_err(py_error)?;
     Ok(p)
 }
 
@@ -205,7 +205,7 @@ pub fn atlas_shard(
     let p = params_of(params)?;
     let shard = Shard::parse(&format!("{index}/{count}")).map_err(|mut e| {
         e.name = "shard index/count".into();
-        value_error(e)
+        py_error(e)
     })?;
     let reporter = Reporter::new(progress);
     let cells = (shard.rows(p.k_points).count() * p.omega_points) as u64;
@@ -226,35 +226,21 @@ pub fn atlas_shard(
 #[pyfunction]
 #[pyo3(signature = (shards, out=None))]
 pub fn atlas_merge(py: Python<'_>, shards: Vec<String>, out: Option<PathBuf>) -> Res<SceneRun> {
-    let mut parts = Vec::with_capacity(shards.len());
-    for (i, text) in shards.iter().enumerate() {
-        let part: Partial = serde_json::from_str(text).map_err(|e| {
-            bad(
-                "atlas shard",
-                format!("shard {i} of the list"),
-                &format!("an output of compute_shard or `cantilever atlas` ({e})"),
-            )
-        })?;
-        parts.push(part);
-    }
-    let spec = scenes::find(Atlas::NAME).map_err(value_error)?;
+    let parts = shards
+        .iter()
+        .enumerate()
+        .map(|(i, text)| self::shards::parse_shard(text, &format!("shard {i} of the list")))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(py_error)?;
+    let spec = scenes::find(Atlas::NAME).map_err(py_error)?;
     let result = py.detach(|| {
-        let data = atlas::merge(parts)?;
-        let resolution = if data.params == AtlasParams::book() {
-            "book"
-        } else if data.params == AtlasParams::test() {
-            "test"
-        } else {
-            "custom"
-        };
-        let provenance = Provenance::of_scene("atlas", resolution);
-        let output = scene::output_of::<Atlas>(&data.params, &data, provenance)?;
+        let output = self::shards::merged(parts)?;
         if let Some(dir) = &out {
             scene::write(spec, &output, dir)?;
         }
         Ok::<_, Error>(output)
     });
-    let out = result.map_err(value_error)?;
+    let out = result.map_err(py_error)?;
     Ok(SceneRun { spec, out })
 }
 

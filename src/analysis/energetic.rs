@@ -18,6 +18,7 @@
 //! the contact hands to the higher modes.
 
 use crate::analysis::orbit::{self, OrbitKind};
+use crate::engine::built::{BuiltModel, Variant};
 use crate::engine::sim::energy::{segment_energy, EnergyTables};
 use crate::engine::sim::{Clock, EventView, Observer, SegmentView, Simulator};
 use crate::error::{Error, ParameterError};
@@ -107,6 +108,9 @@ pub struct ContactWork {
 
 impl ContactWork {
     /// Observes mode j (0-based) of `model`; a mode the model does not have is bad input.
+    ///
+    /// # Errors
+    /// [`ParameterError`] when `mode` is not below the model's N.
     pub fn for_mode(model: &GalerkinModel, mode: usize) -> Result<Self, ParameterError> {
         if mode >= model.modes() {
             return Err(ParameterError::new(
@@ -141,7 +145,7 @@ impl ContactWork {
 
 impl Observer for ContactWork {
     fn begin(&mut self, sim: &Simulator, clock: &Clock, x: &DVector<f64>) {
-        if sim.initial_region(x, clock) == Region::Contact {
+        if sim.model().start_region(x, clock.offset) == Region::Contact {
             self.contacts.push(Contact {
                 entry: None,
                 v1: None,
@@ -220,8 +224,35 @@ pub struct OrbitCoefficient {
     pub cycle: i64,
 }
 
+/// Why the rigid-impact model has no r_E.
+pub const NO_CONTACT_FORCE: &str = "r_E (eqs 38–39) weighs the work of the compliant contact \
+     force on mode 1; the rigid-impact model has no contact force — its restitution is its law";
+
+/// [`orbit_coefficient`] of a model built from its specification, the options checked.
+///
+/// # Errors
+/// [`Error::Parameter`] for `transient` or `window` out of range
+/// ([`orbit::TRANSIENT`], [`orbit::WINDOW`]) or a start of the wrong length;
+/// [`Error::Unsupported`] for the rigid-impact model; the run's errors.
+pub fn energetic_restitution(
+    model: &BuiltModel,
+    x0: &DVector<f64>,
+    transient: u64,
+    window: u64,
+) -> Result<OrbitCoefficient, Error> {
+    orbit::TRANSIENT.check(transient as i128)?;
+    orbit::WINDOW.check(window as i128)?;
+    match model.variant() {
+        Variant::Compliant(sim) => orbit_coefficient(sim, x0, transient, window),
+        Variant::Rigid(_) => Err(Error::Unsupported(NO_CONTACT_FORCE.into())),
+    }
+}
+
 /// Runs `transient` periods from x0, labels the orbit over a `window` of periods, and if it
 /// is periodic (period m) evaluates eq (39) over the m periods that follow.
+///
+/// # Errors
+/// The run's errors ([`orbit::settle`]), a start of the wrong length among them.
 pub fn orbit_coefficient(
     sim: &Simulator,
     x0: &DVector<f64>,

@@ -18,8 +18,10 @@
 //! ```
 
 use crate::analysis::energetic::ContactWork;
-use crate::analysis::orbit::detect_period_by;
+use crate::analysis::energetic::NO_CONTACT_FORCE;
+use crate::analysis::orbit::{detect_period_by, TRANSIENT, WINDOW};
 use crate::analysis::shooting::{self, PeriodicOrbit};
+use crate::engine::built::{BuiltModel, Variant};
 use crate::engine::map::PeriodMap;
 use crate::engine::rigid::RigidImpact;
 use crate::engine::sim::Simulator;
@@ -47,16 +49,22 @@ pub struct OrbitOptions {
     pub restitution: bool,
 }
 
+impl OrbitOptions {
+    /// The options every front end starts from: 1000 transient periods, m read from a
+    /// window of 65 (up to 64) to 1e-3, Newton's default steps, no r_E.
+    pub const DEFAULTS: OrbitOptions = OrbitOptions {
+        transient: 1000,
+        window: 65,
+        period: None,
+        period_tolerance: 1e-3,
+        max_iterations: shooting::MAX_ITERATIONS,
+        restitution: false,
+    };
+}
+
 impl Default for OrbitOptions {
     fn default() -> Self {
-        Self {
-            transient: 1000,
-            window: 65,
-            period: None,
-            period_tolerance: 1e-3,
-            max_iterations: shooting::MAX_ITERATIONS,
-            restitution: false,
-        }
+        Self::DEFAULTS
     }
 }
 
@@ -94,6 +102,10 @@ impl FoundOrbit {
 /// r_E of an orbit, where the model defines it.
 pub trait EnergeticRestitution {
     /// Eq (39) over one period of `orbit` (`Ok(None)` when the balance has no real root).
+    ///
+    /// # Errors
+    /// [`Error::Unsupported`] for a model that does not define r_E (rigid, two-basis); for the
+    /// compliant model, the errors of the run over the orbit's period.
     fn energetic_restitution(&self, orbit: &PeriodicOrbit) -> Result<Option<f64>, Error>;
 }
 
@@ -107,11 +119,16 @@ impl EnergeticRestitution for Simulator {
 
 impl EnergeticRestitution for RigidImpact {
     fn energetic_restitution(&self, _: &PeriodicOrbit) -> Result<Option<f64>, Error> {
-        Err(Error::Unsupported(
-            "r_E (eqs 38–39) weighs the work of the compliant contact force on mode 1; the \
-             rigid-impact model has no contact force — its restitution is its law"
-                .into(),
-        ))
+        Err(Error::Unsupported(NO_CONTACT_FORCE.into()))
+    }
+}
+
+impl EnergeticRestitution for BuiltModel {
+    fn energetic_restitution(&self, orbit: &PeriodicOrbit) -> Result<Option<f64>, Error> {
+        match self.variant() {
+            Variant::Compliant(sim) => sim.energetic_restitution(orbit),
+            Variant::Rigid(rigid) => rigid.energetic_restitution(orbit),
+        }
     }
 }
 
@@ -127,10 +144,13 @@ impl EnergeticRestitution for TwoBasisModel {
 
 /// The periodic orbit `model` settles on from `start`: `options.transient` periods, the
 /// period m read from a window of `options.window` periods (or given), Newton shooting with
-/// the exact monodromy, the multipliers, and r_E if asked for. Bad options and starts are
-/// [`Error::Parameter`]; a start that settles on no period within the window, a Newton
-/// that does not converge, or a model without a Jacobian is [`Error::Unsupported`] with
-/// the reason.
+/// the exact monodromy, the multipliers, and r_E if asked for.
+///
+/// # Errors
+/// [`Error::Parameter`] for bad options or a bad start; [`Error::NoPeriod`] when the window
+/// shows no period; [`Error::NotConverged`] when Newton does not converge;
+/// [`Error::Unsupported`] for a model without a Jacobian (or without r_E, when asked for);
+/// a run's [`Error::Chatter`] or [`Error::Invariant`].
 pub fn find_orbit<M: PeriodMap + EnergeticRestitution + ?Sized>(
     model: &M,
     start: &DVector<f64>,
@@ -150,7 +170,7 @@ pub fn find_orbit<M: PeriodMap + EnergeticRestitution + ?Sized>(
                 &|a, b| model.residual(a, b),
             );
             let m = m.ok_or_else(|| {
-                Error::Unsupported(format!(
+                Error::NoPeriod(format!(
                     "{} settles on no period within {} periods after a transient of {} \
                      (best relative residual {best:.1e}, wanted {:.0e}): give the period, a \
                      longer transient, or another start",
@@ -183,20 +203,8 @@ pub fn find_orbit<M: PeriodMap + EnergeticRestitution + ?Sized>(
 }
 
 fn check(o: &OrbitOptions) -> Result<(), ParameterError> {
-    if o.transient > 100_000_000 {
-        return Err(ParameterError::new(
-            "transient",
-            o.transient,
-            "0 to 1e8 periods",
-        ));
-    }
-    if !(2..=10_000).contains(&o.window) {
-        return Err(ParameterError::new(
-            "window",
-            o.window,
-            "2 to 10 000 periods",
-        ));
-    }
+    TRANSIENT.check(o.transient as i128)?;
+    WINDOW.check(o.window as i128)?;
     if let Some(m) = o.period {
         if !(1..=64).contains(&m) {
             return Err(ParameterError::new("period m", m, "1 to 64"));

@@ -39,7 +39,7 @@ pub const TOLERANCE: f64 = crate::analysis::shooting::TOLERANCE;
 
 /// The vector field in free flight, [η̇; −Kη − Cη̇ + F(t)] (continuous across Σ).
 fn field(sim: &Simulator, x: &DVector<f64>, t: f64) -> DVector<f64> {
-    sim.model().vector_field(x, t, Region::Free)
+    sim.model().field(x, t, Region::Free)
 }
 
 /// x with its displacement moved along φ(1) onto Σ.
@@ -47,7 +47,7 @@ fn onto_section(sim: &Simulator, x: &DVector<f64>) -> DVector<f64> {
     let model = sim.model();
     let n = model.modes();
     let tip = model.tip();
-    let g = model.switching_function(&x.rows(0, n).into_owned());
+    let g = model.gap_of(x.rows(0, n));
     let mut y = x.clone();
     let shift = tip * (g / tip.norm_squared());
     for j in 0..n {
@@ -86,7 +86,7 @@ fn return_map(
         .nth(n - 1)
         .map(|e| e.clock)
         .ok_or_else(|| {
-            Error::Unsupported(format!(
+            Error::NoPeriod(format!(
                 "no {n}-th entry into contact within {horizon} periods of the start on the impact section"
             ))
         })?;
@@ -112,8 +112,13 @@ fn return_map(
 
 /// Newton shooting on the impact section for an orbit with n entries per period, from a
 /// state `x0` at an entry into contact at clock `start` (from a transient's events, say).
-/// The period m is read from the first return. Fails with [`Error::Unsupported`] when
+/// The period m is read from the first return. Fails with [`Error::NotConverged`] when
 /// Newton does not reach [`TOLERANCE`] in `max_iterations` steps.
+///
+/// # Errors
+/// [`Error::Parameter`] for n = 0 or a bad `x0`; [`Error::NoPeriod`] when the n-th entry does
+/// not come within 64 periods; [`Error::NotConverged`]; [`Error::Flow`] when the multipliers'
+/// eigensolver fails; a run's [`Error::Chatter`] or [`Error::Invariant`].
 pub fn shoot(
     sim: &Simulator,
     x0: &DVector<f64>,
@@ -122,9 +127,12 @@ pub fn shoot(
     max_iterations: usize,
 ) -> Result<PeriodicOrbit, Error> {
     if n == 0 {
-        return Err(Error::Unsupported(
-            "an orbit on the impact section has at least one entry into contact".into(),
-        ));
+        return Err(crate::error::ParameterError::new(
+            "entries per period n",
+            n,
+            "at least one (an orbit on the impact section has an entry into contact)",
+        )
+        .into());
     }
     sim.check_state("shooting guess", x0)?;
     let period = sim.period();

@@ -9,4 +9,5 @@ pub mod harmonics;
 pub mod impact_section;
 pub mod orbit;
 pub mod shooting;
+pub mod simulate;
 pub mod speed_bound;

@@ -13,6 +13,7 @@
 //! bifurcation the bare test can mislabel a slowly converging orbit (a period-d orbit near
 //! its period doubling passes at 2d first); there Newton shooting decides ([`label`]).
 
+pub use crate::base::random::{random_state, SplitMix64};
 use crate::engine::map::{PeriodMap, Periods};
 use crate::engine::sim::{Dense, Event, Events, Sample, Simulator, Strobe};
 use crate::error::Error;
@@ -26,6 +27,24 @@ pub const PERIODIC_TOLERANCE: f64 = 1e-9;
 pub const MAX_PERIOD: usize = 32;
 
 pub use crate::engine::map::relative_residual;
+
+/// Forcing periods run from a start before its orbit is read.
+pub const TRANSIENT: crate::model::ranges::Count = crate::model::ranges::Count {
+    name: "transient",
+    symbol: "periods",
+    min: 0,
+    max: 100_000_000,
+    why: "at ~10 µs a period for N = 10, 1e8 periods take about 20 minutes",
+};
+
+/// Periods whose strobe gives the period m (the longest m read is one less, at most 64).
+pub const WINDOW: crate::model::ranges::Count = crate::model::ranges::Count {
+    name: "window",
+    symbol: "periods",
+    min: 2,
+    max: 10_000,
+    why: "a period must be seen twice; the strobe of the window is kept in memory",
+};
 
 /// The smallest m ≤ max_m with a relative residual below `tol` between the last strobe
 /// sample and the one m periods earlier, and the best residual seen.
@@ -156,6 +175,11 @@ impl Settled {
 /// Runs `transient` periods of `model` from x0 at cycle 0 (recording nothing), then a
 /// `window` of periods strobed, and labels the orbit: the one settle of every model
 /// variant.
+///
+/// # Errors
+/// [`Error::Parameter`] for an `x0` of the wrong length or not finite; the errors of the
+/// model's [`PeriodMap::advance`] ([`Error::Chatter`], [`Error::Invariant`], ...). A window
+/// that is not periodic is a label, not an error.
 pub fn settle_map<M: PeriodMap + ?Sized>(
     model: &M,
     x0: &DVector<f64>,
@@ -237,6 +261,10 @@ impl Orbit {
 
 /// Runs `transient` periods from x0 (observing nothing), then `window` periods recording the
 /// strobe, the events and (if `dense_per_period` > 0) dense samples, and labels the orbit.
+///
+/// # Errors
+/// The errors of [`Simulator::run_until`]: [`Error::Parameter`] for a bad `x0`,
+/// [`Error::Chatter`], [`Error::Invariant`]. A window that is not periodic is not an error.
 pub fn settle(
     sim: &Simulator,
     x0: &DVector<f64>,
@@ -287,6 +315,10 @@ pub fn settle(
 /// the orbit and the periods discarded before its window (for lightly damped models, whose
 /// transients last thousands of periods, a fixed transient would either waste time or
 /// label an unsettled run).
+///
+/// # Errors
+/// As [`settle_map`]; reaching `max_transient` without a period is not an error (the last
+/// window is returned, labelled not periodic).
 pub fn settle_until_periodic<M: PeriodMap + ?Sized>(
     model: &M,
     x0: &DVector<f64>,
@@ -334,6 +366,10 @@ impl Settling {
 
 /// The orbit `problem` settles to from rest: its simulator, the settled orbit and the
 /// periods discarded before its window.
+///
+/// # Errors
+/// [`Error::Parameter`] for a problem out of range; [`Error::Flow`] when a region's flow
+/// cannot be built; the run errors of [`settle_until_periodic`].
 pub fn settle_from_rest(
     problem: &crate::model::problems::Forced,
     settling: &Settling,
@@ -368,6 +404,10 @@ pub struct RigidOrbit {
 }
 
 /// [`settle_map`] for the rigid-impact model, with what its scenes report.
+///
+/// # Errors
+/// As [`settle_map`]: [`Error::Parameter`] for a bad state or one beyond the stop;
+/// [`Error::Chatter`] for a chatter with no sticking limit or past the impact limit.
 pub fn settle_rigid(
     model: &crate::engine::rigid::RigidImpact,
     x0: &DVector<f64>,
@@ -390,55 +430,11 @@ pub fn settle_rigid(
     })
 }
 
-/// A deterministic pseudo-random stream (SplitMix64, Steele, Lea & Flood 2014): seeded per
-/// sweep point, so a diagram does not depend on the thread count or on a crate's version.
-#[derive(Debug, Clone)]
-pub struct SplitMix64(pub u64);
-
-impl SplitMix64 {
-    /// The next 64 random bits.
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in [−1, 1).
-    pub fn symmetric(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    }
-
-    /// A stream for sweep point `(a, b, c)` of `seed`.
-    pub fn for_point(seed: u64, a: u64, b: u64, c: u64) -> Self {
-        let mut s = SplitMix64(seed ^ a.wrapping_mul(0x1000_0000_01B3));
-        s.0 ^= s.next_u64() ^ b.wrapping_mul(0xC2B2_AE3D_27D4_EB4F);
-        s.0 ^= s.next_u64() ^ c.wrapping_mul(0x1656_67B1_9E37_79F9);
-        s
-    }
-}
-
-/// A random state of tip-displacement scale `amplitude` and frequency scale ω: each η_j
-/// uniform in ±amplitude/2 (so the tip, 2Ση, is O(amplitude)), each η̇_j in ±ω·amplitude/2.
-pub fn random_state(
-    rng: &mut SplitMix64,
-    modes: usize,
-    amplitude: f64,
-    omega: f64,
-) -> DVector<f64> {
-    DVector::from_fn(2 * modes, |i, _| {
-        let scale = if i < modes {
-            0.5 * amplitude
-        } else {
-            0.5 * amplitude * omega
-        };
-        scale * rng.symmetric() / modes as f64
-    })
-}
-
 /// Orbits reached from `starts` random initial conditions ([`random_state`] at 4·A_free,
 /// seeded by `seed` and N), counted by kind.
+///
+/// # Errors
+/// The first error of [`settle`] from a start ([`Error::Chatter`], [`Error::Invariant`]).
 pub fn random_orbits(
     sim: &Simulator,
     starts: usize,

@@ -43,6 +43,10 @@ pub const MAX_ITERATIONS: usize = 40;
 
 /// P^m(x) from the start of cycle 0, with its monodromy and the entries into contact
 /// ([`PeriodMap::map_with_jacobian`]).
+///
+/// # Errors
+/// Those of the model's [`PeriodMap::map_with_jacobian`]: [`Error::Unsupported`] for a model
+/// without a Jacobian, [`Error::Parameter`] for a bad state, or a run that fails.
 pub fn map_with_jacobian<M: PeriodMap + ?Sized>(
     model: &M,
     x: &DVector<f64>,
@@ -116,10 +120,14 @@ impl PeriodicOrbit {
 pub const LEAST_PERIOD: f64 = 1e-6;
 
 /// Newton shooting for a period-m orbit from the guess `x0` (a state at the start of a
-/// forcing period), reported at its least period. Fails with [`Error::Unsupported`] when
-/// Newton does not reach [`TOLERANCE`] in [`MAX_ITERATIONS`] (a guess outside the orbit's
-/// basin of convergence, or a period m that does not exist there), saying how close it
-/// came, and with [`Error::Parameter`] for a guess of the wrong length or not finite.
+/// forcing period), reported at its least period.
+///
+/// # Errors
+/// [`Error::NotConverged`] when Newton does not reach [`TOLERANCE`] in [`MAX_ITERATIONS`]
+/// (a guess outside the orbit's basin of convergence, or a period m that does not exist
+/// there), saying how close it came; [`Error::Parameter`] for a guess of the wrong length
+/// or not finite, or m outside 1 to 64; [`Error::Unsupported`] for a model without a
+/// Jacobian; [`Error::Chatter`] for a run the model cannot continue.
 pub fn shoot<M: PeriodMap + ?Sized>(
     model: &M,
     x0: &DVector<f64>,
@@ -131,6 +139,9 @@ pub fn shoot<M: PeriodMap + ?Sized>(
 /// [`shoot`] with at most `max_iterations` Newton steps (a sweep that tries many guesses
 /// gives up early on those that do not converge fast: from a guess near the orbit, Newton
 /// converges quadratically in a few steps).
+///
+/// # Errors
+/// As [`shoot`], with `max_iterations` in place of [`MAX_ITERATIONS`].
 pub fn shoot_within<M: PeriodMap + ?Sized>(
     model: &M,
     x0: &DVector<f64>,
@@ -156,6 +167,9 @@ pub fn shoot_within<M: PeriodMap + ?Sized>(
 /// [`shoot_within`] at exactly period m, without the reduction to the least period: for
 /// continuation along a period-m branch, whose points near a period doubling come close to
 /// the period-m/2 orbit they branch from and must still be computed at m.
+///
+/// # Errors
+/// As [`shoot_within`].
 pub fn shoot_at_period<M: PeriodMap + ?Sized>(
     model: &M,
     x0: &DVector<f64>,
@@ -213,6 +227,26 @@ fn newton<M: PeriodMap + ?Sized>(
 }
 
 /// The eigenvalues of a monodromy matrix.
+///
+/// # Errors
+/// [`Error::Parameter`] for a matrix that is not square or has an entry that is not
+/// finite; [`Error::Flow`] when the eigensolver does not converge.
 pub fn floquet(m: &DMatrix<f64>) -> Result<Vec<Complex64>, Error> {
+    if m.nrows() != m.ncols() {
+        return Err(ParameterError::new(
+            "monodromy matrix",
+            format!("{} × {}", m.nrows(), m.ncols()),
+            "a square matrix",
+        )
+        .into());
+    }
+    if m.iter().any(|v| !v.is_finite()) {
+        return Err(ParameterError::new(
+            "monodromy matrix",
+            "an entry that is not finite",
+            "finite entries",
+        )
+        .into());
+    }
     Ok(eigenvalues_balanced(m)?)
 }

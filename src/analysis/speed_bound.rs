@@ -74,9 +74,11 @@ mod tests {
         );
         let unforced = GalerkinModel::new(GalerkinParams::new(3, 100.0).with_zeta1(0.01)).unwrap();
         assert_eq!(periodic_tip_speed_bound(&unforced, 1), None);
-        let undamped = GalerkinModel::new(
-            GalerkinParams::new(3, 100.0).with_forcing(Forcing::paper(first_frequency())),
-        )
+        // (the paper's unit forcing is refused undamped: its amplitude scales with C₁₁)
+        let undamped = GalerkinModel::new(GalerkinParams::new(3, 100.0).with_forcing(Forcing {
+            omega: first_frequency(),
+            profile: crate::model::galerkin::SpatialProfile::Modal(vec![1.0]),
+        }))
         .unwrap();
         assert_eq!(periodic_tip_speed_bound(&undamped, 1), None);
     }

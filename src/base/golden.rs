@@ -22,12 +22,20 @@ pub struct GoldenRoots {
 
 impl GoldenRoots {
     /// Parses the embedded file.
+    ///
+    /// # Panics
+    /// If the embedded `golden/roots.json` does not parse: never for the committed file, which the
+    /// tests load.
     pub fn load() -> Self {
         serde_json::from_str(include_str!("../../golden/roots.json"))
             .expect("golden/roots.json parses")
     }
 
     /// (i, β) pairs of a table, sorted by i.
+    ///
+    /// # Panics
+    /// If a key is not a mode index or a value not a number: never for the tables of
+    /// [`GoldenRoots::load`], which the tests read.
     pub fn table(map: &BTreeMap<String, String>) -> Vec<(usize, f64)> {
         let mut v: Vec<(usize, f64)> = map
             .iter()

@@ -45,6 +45,11 @@ const SMALLEST_STEP: f64 = 1e-6;
 /// onto the set the unknowns live on (the identity for most problems). `what` names the
 /// problem in the errors: no convergence within `max_iterations` steps (saying how close
 /// it came), or a singular DG.
+///
+/// # Errors
+/// `Error::NotConverged` (with the residual) when the residual is still above `tolerance`
+/// after `max_iterations` steps or DG is singular; an error of `evaluate` at `x0`, or at a
+/// trial step once it is below 1e-6 of a full step, is passed on.
 pub fn solve<E>(
     x0: DVector<f64>,
     mut evaluate: impl FnMut(&DVector<f64>) -> Result<Evaluation<E>, Error>,
@@ -58,19 +63,29 @@ pub fn solve<E>(
     let mut iterations = 0;
     while at.residual > tolerance {
         if iterations == max_iterations {
-            return Err(Error::Unsupported(format!(
-                "{what} did not converge in {max_iterations} Newton steps (residual {:.1e}); \
-                 start closer to the orbit (more transient periods) or try another period",
-                at.residual
-            )));
+            return Err(Error::NotConverged {
+                message: format!(
+                    "{what} did not converge in {max_iterations} Newton steps (residual \
+                     {:.1e}); start closer to the orbit (more transient periods) or try \
+                     another period",
+                    at.residual
+                ),
+                residual: Some(at.residual),
+            });
         }
         iterations += 1;
-        let step = at.jacobian.clone().lu().solve(&(-&at.g)).ok_or_else(|| {
-            Error::Unsupported(format!(
-                "{what}: the Jacobian is singular at Newton step {iterations} (a Floquet \
-                 multiplier equals 1: a fold or a resonance)"
-            ))
-        })?;
+        let step =
+            at.jacobian
+                .clone()
+                .lu()
+                .solve(&(-&at.g))
+                .ok_or_else(|| Error::NotConverged {
+                    message: format!(
+                        "{what}: the Jacobian is singular at Newton step {iterations} (a Floquet \
+                     multiplier equals 1: a fold or a resonance)"
+                    ),
+                    residual: Some(at.residual),
+                })?;
         let mut lambda = 1.0;
         loop {
             let trial = project(&x + &step * lambda);

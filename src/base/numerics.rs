@@ -100,6 +100,9 @@ pub struct Quadrature {
 
 impl Quadrature {
     /// Builds the rule; `order ≥ 2` and `panels ≥ 1`.
+    ///
+    /// # Panics
+    /// Never: `order` is raised to 2 before the rule is built.
     pub fn composite(order: usize, panels: usize) -> Self {
         let rule = GaussLegendre::new(order.max(2).try_into().expect("order ≥ 2"));
         let h = 1.0 / panels as f64;

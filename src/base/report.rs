@@ -389,6 +389,11 @@ impl KeyNumbers {
     /// Reads back the object [`KeyNumbers::to_json`] writes (the `key_numbers` member of a
     /// `key_numbers.json`), in its order. A series written before its `digits` were
     /// recorded gets the digits its uncertainties support.
+    ///
+    /// # Errors
+    /// A message naming the key when `value` is not an object, an entry is neither a float with
+    /// its uncertainty nor an integer or text, a series' lists differ in length, a value or
+    /// uncertainty is not finite (or ± < 0), or `digits` is not 1 to 17.
     pub fn from_json(value: &Value) -> Result<Self, String> {
         let object = value
             .as_object()
@@ -467,6 +472,10 @@ impl KeyNumbers {
     /// on the next line, and a label that reads as a number is
     /// taken for one. A key may itself contain " = " (`eps where k = k2`): the split is the
     /// first after which the rest reads as a number, else the first.
+    ///
+    /// # Errors
+    /// A message naming the line when the `---` header is not closed, a line has no ` = `, or a
+    /// basis line follows no number.
     pub fn from_snapshot(text: &str) -> Result<Self, String> {
         let mut lines: Vec<&str> = text.lines().collect();
         if lines.first() == Some(&"---") {

@@ -156,7 +156,18 @@ fn step(
 }
 
 /// Integrates from (0, x0) to t_end with event location.
-pub fn integrate(model: &GalerkinModel, x0: &DVector<f64>, t_end: f64, tol: Tolerances) -> RefRun {
+///
+/// # Errors
+/// [`crate::error::Error::Parameter`] for a state of the wrong length or not finite, or a
+/// t_end that is not a finite number ≥ 0.
+pub fn integrate(
+    model: &GalerkinModel,
+    x0: &DVector<f64>,
+    t_end: f64,
+    tol: Tolerances,
+) -> Result<RefRun, crate::error::Error> {
+    crate::engine::sim::check_state(x0, 2 * model.modes(), "the reference integrator")?;
+    crate::error::finite_non_negative("end time t_end", t_end)?;
     let omega = model.params().forcing.as_ref().map_or(0.0, |f| f.omega);
     let rhs = Rhs { model, omega };
     let n = model.modes();
@@ -166,7 +177,7 @@ pub fn integrate(model: &GalerkinModel, x0: &DVector<f64>, t_end: f64, tol: Tole
     let mut x: Vec<f64> = x0.iter().cloned().collect();
     // the model's rule (shared with the simulator): on the surface, velocity then
     // acceleration decide
-    let mut region = model.starting_region(x0, 0.0);
+    let mut region = model.starting_region(x0, 0.0)?;
     let mut t = 0.0;
     let scale_t = if omega > 0.0 {
         2.0 * std::f64::consts::PI / omega
@@ -231,10 +242,10 @@ pub fn integrate(model: &GalerkinModel, x0: &DVector<f64>, t_end: f64, tol: Tole
         }
         h = h_try * (0.9 * e.max(1e-10).powf(-0.2)).min(5.0);
     }
-    RefRun {
+    Ok(RefRun {
         events,
         state: DVector::from_vec(x),
         steps,
         evaluations,
-    }
+    })
 }

@@ -18,8 +18,11 @@ use crate::model::galerkin::Region;
 use nalgebra::{DMatrix, DVector};
 
 /// ‖a − b‖∞ / max(‖a‖∞, ‖b‖∞) (0 when both are zero): §5.2's periodicity test on the
-/// orbit's own scale.
+/// orbit's own scale; ∞ for vectors of different lengths (never the same state).
 pub fn relative_residual(a: &DVector<f64>, b: &DVector<f64>) -> f64 {
+    if a.len() != b.len() {
+        return f64::INFINITY;
+    }
     let scale = a.amax().max(b.amax());
     if scale == 0.0 {
         0.0
@@ -60,6 +63,11 @@ pub trait PeriodMap: Sync {
     }
     /// P^`periods` of `x` taken at the start of forcing cycle `cycle`; with `record`, the
     /// strobe, the entries into contact per period and their tip velocities too.
+    ///
+    /// # Errors
+    /// [`Error::Parameter`] for a bad state; a run's failure: [`Error::Chatter`] (contacts beyond
+    /// a period's cap, or a rigid chatter with no sticking limit or past the impact limit),
+    /// [`Error::Invariant`] or [`Error::Interrupted`].
     fn advance(
         &self,
         x: &DVector<f64>,
@@ -74,6 +82,10 @@ pub trait PeriodMap: Sync {
     }
     /// P^m(x) from the start of cycle 0, its Jacobian (the monodromy matrix) and the
     /// entries into contact on the way.
+    ///
+    /// # Errors
+    /// [`Error::Unsupported`] by default (a model without a Jacobian); an implementation's run
+    /// errors otherwise, and [`Error::Chatter`] for a rigid orbit that chatters or sticks.
     fn map_with_jacobian(
         &self,
         _x: &DVector<f64>,
@@ -85,6 +97,10 @@ pub trait PeriodMap: Sync {
         )))
     }
     /// Checks a state: its length and that every entry is finite.
+    ///
+    /// # Errors
+    /// [`ParameterError`] naming `what` for a state of the wrong length or with an entry that is
+    /// not finite.
     fn check_state(&self, what: &str, x: &DVector<f64>) -> Result<(), ParameterError> {
         if x.len() != self.dimension() {
             return Err(ParameterError::new(
@@ -211,17 +227,19 @@ impl PeriodMap for RigidImpact {
             match run.outcome {
                 Outcome::Completed => {}
                 Outcome::Chatter(t) => {
-                    return Err(Error::Unsupported(format!(
+                    return Err(Error::Chatter(format!(
                         "{} chatters at t = {t:.6e} under a law with no sticking limit \
                          (N > 1 with [R]_N or [R]_C): the state after it is not defined",
                         self.name()
                     )))
                 }
                 Outcome::ImpactLimit => {
-                    return Err(Error::Unsupported(format!(
-                        "{} made more than {} impacts in one run",
+                    return Err(Error::Chatter(format!(
+                        "{} made more than {} impacts between sticking phases, or {} in one \
+                         forcing period",
                         self.name(),
-                        self.settings.max_impacts
+                        self.settings.max_impacts,
+                        self.settings.max_impacts_per_period
                     )))
                 }
             }
@@ -301,6 +319,7 @@ impl PeriodMap for TwoBasisModel {
         periods: u64,
         record: bool,
     ) -> Result<Periods, Error> {
+        self.check_state("state", x)?;
         let period = TwoBasisModel::period(self);
         let clock = |c: i64| Clock::at_cycle(period, c);
         let mut state = unpack(x);
@@ -331,6 +350,9 @@ impl PeriodMap for TwoBasisModel {
     }
     /// Samples in different bases are never the same point of an orbit.
     fn residual(&self, a: &DVector<f64>, b: &DVector<f64>) -> f64 {
+        if a.len() != b.len() || a.is_empty() {
+            return f64::INFINITY;
+        }
         let n = a.len() - 1;
         if a[n] != b[n] {
             return f64::INFINITY;

@@ -1,5 +1,6 @@
 //! Time integration of the models: exact flows, certified switching and impacts.
 
+pub mod built;
 pub mod dopri5;
 pub mod flow;
 pub mod map;

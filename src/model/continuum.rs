@@ -56,6 +56,12 @@ fn check_index(i: usize) -> Result<usize, ParameterError> {
 /// β_i^-: the i-th root of cos β + sech β = 0 (free cantilever, k = 0).
 /// It lies in ((i−1)π, iπ), where cos is monotone and sech < 0.09 (for i ≥ 2) keeps the
 /// root unique.
+///
+/// # Errors
+/// [`ParameterError`] for `i` out of 1…[`MAX_MODE_INDEX`].
+///
+/// # Panics
+/// Never: the root is bracketed by a sign change of eq (3) for every index served.
 pub fn free_root(i: usize) -> Result<f64, ParameterError> {
     check_index(i)?;
     let lo = (i as f64 - 1.0) * PI;
@@ -65,6 +71,12 @@ pub fn free_root(i: usize) -> Result<f64, ParameterError> {
 
 /// β_i^∞: the i-th root of tan β = tanh β (clamped-pinned beam, k = ∞).
 /// It lies in (iπ, iπ + π/2), where tan rises from 0 to ∞ and tanh ∈ (0, 1).
+///
+/// # Errors
+/// [`ParameterError`] for `i` out of 1…[`MAX_MODE_INDEX`].
+///
+/// # Panics
+/// Never: the root is bracketed by a sign change for every index served.
 pub fn clamped_pinned_root(i: usize) -> Result<f64, ParameterError> {
     check_index(i)?;
     let lo = i as f64 * PI;
@@ -77,6 +89,9 @@ pub fn clamped_pinned_root(i: usize) -> Result<f64, ParameterError> {
 
 /// β_i^+(k): the i-th root of eq (3) for stop stiffness k ∈ [0, ∞] (`f64::INFINITY`
 /// allowed), to relative accuracy ≈ 1e-15.
+///
+/// # Errors
+/// [`ParameterError`] for `i` out of 1…[`MAX_MODE_INDEX`] or a NaN or negative stiffness.
 pub fn root(i: usize, stop_stiffness: f64) -> Result<f64, ParameterError> {
     if stop_stiffness.is_nan() || stop_stiffness < 0.0 {
         return Err(ParameterError::new(
@@ -106,16 +121,26 @@ pub fn root(i: usize, stop_stiffness: f64) -> Result<f64, ParameterError> {
 }
 
 /// β_1^+ … β_n^+ for stop stiffness k.
+///
+/// # Errors
+/// [`ParameterError`] for `n` above [`MAX_MODE_INDEX`] or a NaN or negative stiffness.
 pub fn roots(n: usize, stop_stiffness: f64) -> Result<Vec<f64>, ParameterError> {
     (1..=n).map(|i| root(i, stop_stiffness)).collect()
 }
 
 /// k_j = (β_j^-)⁴: the modal stiffness of free cantilever mode j (eq 8).
+///
+/// # Errors
+/// [`ParameterError`] for `j` out of 1…[`MAX_MODE_INDEX`].
 pub fn modal_stiffness(j: usize) -> Result<f64, ParameterError> {
     Ok(free_root(j)?.powi(4))
 }
 
 /// The small-k law, eq (4): (β_i^+)⁴ ≈ (β_i^-)⁴ + k.
+///
+/// # Errors
+/// [`ParameterError`] for `i` out of 1…[`MAX_MODE_INDEX`] or a stiffness that is not finite
+/// and ≥ 0.
 pub fn small_k_eigenvalue(i: usize, stop_stiffness: f64) -> Result<f64, ParameterError> {
     let k = finite_non_negative("stop stiffness k", stop_stiffness)?;
     Ok(modal_stiffness(i)? + k)
@@ -199,6 +224,9 @@ impl ModeShape {
 
 /// φ_i = (−1)^i ψ_i^-: the free cantilever mode scaled so that φ_i(1) = 2 and
 /// ∫φ_i² = 1 (§2.2; the text's (−1)^{i+1} is a sign slip, see the errata).
+///
+/// # Errors
+/// [`ParameterError`] for `i` out of 1…[`MAX_MODE_INDEX`].
 pub fn free_mode(i: usize) -> Result<ModeShape, ParameterError> {
     let mut m = ModeShape::printed(free_root(i)?);
     m.scale = if i.is_multiple_of(2) { 1.0 } else { -1.0 };
@@ -206,6 +234,9 @@ pub fn free_mode(i: usize) -> Result<ModeShape, ParameterError> {
 }
 
 /// ψ_i^+ for stop stiffness k ∈ [0, ∞], normalised to ∫ψ² = 1 with the sign of eq (2).
+///
+/// # Errors
+/// [`ParameterError`] for `i` out of 1…[`MAX_MODE_INDEX`] or a NaN or negative stiffness.
 pub fn constrained_mode(i: usize, stop_stiffness: f64) -> Result<ModeShape, ParameterError> {
     let mut m = ModeShape::printed(root(i, stop_stiffness)?);
     m.scale = 1.0 / m.squared_norm().sqrt();

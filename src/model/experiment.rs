@@ -80,6 +80,9 @@ impl Strip {
 
     /// The i-th natural frequency of the clamped-free strip (Hz):
     /// (β_i⁻)²/(2πL²)·√(EI/(ρA)).
+    ///
+    /// # Errors
+    /// [`ParameterError`] for `i` out of 1…[`continuum::MAX_MODE_INDEX`].
     pub fn frequency(&self, i: usize, m: &Material) -> Result<f64, ParameterError> {
         let beta = continuum::free_root(i)?;
         Ok(
@@ -89,6 +92,10 @@ impl Strip {
     }
 
     /// The free length that gives first frequency f (Hz), the rest unchanged.
+    ///
+    /// # Errors
+    /// Never in practice: only the first free root is needed, which always exists (the
+    /// [`ParameterError`] of [`Strip::frequency`] is passed on).
     pub fn length_for_frequency(&self, f: f64, m: &Material) -> Result<f64, ParameterError> {
         Ok(self.length * (self.frequency(1, m)? / f).sqrt())
     }
@@ -108,6 +115,9 @@ pub fn stop_ratio(beam: &Strip, stop: f64, m: &Material) -> f64 {
 /// The tip mass, as a fraction μ of the strip's mass, that lowers its first frequency by
 /// the factor `ratio` < 1: the exact frequency equation of a cantilever with a tip mass,
 /// 1 + cos β cosh β + μβ(cos β sinh β − sin β cosh β) = 0, solved for μ at β = β₁⁻√ratio.
+///
+/// # Errors
+/// [`ParameterError`] when `ratio` is not finite and > 0.
 pub fn tip_mass_fraction(ratio: f64) -> Result<f64, ParameterError> {
     crate::error::finite_positive("frequency ratio", ratio)?;
     let beta = continuum::free_root(1)? * ratio.sqrt();
@@ -195,6 +205,9 @@ impl Rig {
 /// The range (low, high) of `quantity` over the 64 corners of [`RANGES`]. Every quantity
 /// computed here is a monotone function of each parameter (products of powers of them, or
 /// monotone in such a product), so its extremes over the box are at corners.
+///
+/// # Errors
+/// The first [`ParameterError`] `quantity` returns at a corner.
 pub fn range_over(
     quantity: impl Fn(&Rig) -> Result<f64, ParameterError>,
 ) -> Result<(f64, f64), ParameterError> {
@@ -207,6 +220,10 @@ pub fn range_over(
 }
 
 /// The pin's own first resonance (Hz): its cantilever's, by the same beam theory.
+///
+/// # Errors
+/// Never in practice: the pin's first-mode frequency always exists (the [`ParameterError`]
+/// of [`Strip::frequency`] is passed on).
 pub fn pin_resonance(rig: &Rig) -> Result<f64, ParameterError> {
     rig.pin.frequency(1, &rig.material)
 }

@@ -50,6 +50,10 @@ pub struct FeBeam {
 
 impl FeBeam {
     /// Assembles the beam with `elements` elements and solves for its free modes.
+    ///
+    /// # Errors
+    /// [`ParameterError`] for `elements` out of 1…[`MAX_ELEMENTS`], or if the generalised
+    /// eigenproblem does not converge.
     pub fn new(elements: usize) -> Result<Self, ParameterError> {
         let n = error::count_in_range("finite elements", elements, MAX_ELEMENTS)?;
         let (k, m) = assemble(n);
@@ -94,6 +98,9 @@ impl FeBeam {
     /// Φᵀb with b_i = ∫₀¹ N_i g ds: the modal coordinates of the L² projection of g onto the
     /// elements (u = M⁻¹b, η = ΦᵀMu = Φᵀb), and also the functional η ↦ ∫g w ds of a
     /// discrete deflection w = Σ_i N_i(Φη)_i.
+    ///
+    /// # Errors
+    /// [`ParameterError`] when a modal coordinate is not finite (`g` not finite somewhere).
     pub fn project(&self, g: &dyn Fn(f64) -> f64) -> Result<DVector<f64>, ParameterError> {
         let b = load_vector(self.elements, g);
         let eta = self.shapes.tr_mul(&b);
@@ -104,6 +111,9 @@ impl FeBeam {
     }
 
     /// The modal state [η; η̇] of a beam with deflection w(s) and velocity w_t(s).
+    ///
+    /// # Errors
+    /// [`ParameterError`] when a projection of either profile is not finite.
     pub fn modal_state(
         &self,
         displacement: &dyn Fn(f64) -> f64,
@@ -119,6 +129,11 @@ impl FeBeam {
     /// The model for the engine, with the PDE parameters of `params` (its `modes` is
     /// ignored: every mode of the discrete beam is kept). Forcing profiles are re-projected
     /// onto the elements; modal amplitudes of the continuum modes are refused.
+    ///
+    /// # Errors
+    /// [`ParameterError`] for α or γ negative or not finite, a forcing given as modal amplitudes,
+    /// the printed eq (37) profile without damping, a projection that is not finite, or the checks
+    /// of [`GalerkinModel::from_modes`] (a bad k, d₀ or ω).
     pub fn model(&self, params: &GalerkinParams) -> Result<GalerkinModel, ParameterError> {
         let (alpha, gamma) = (params.viscous_damping, params.material_damping);
         error::finite_non_negative("viscous damping α", alpha)?;

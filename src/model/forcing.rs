@@ -85,6 +85,12 @@ pub(crate) fn project(
             f
         }
         SpatialProfile::UnitTipAtResonance => {
+            // the unit tip amplitude at resonance is set by the damping: undamped, the
+            // amplitude would be 0 (and the resonant response unbounded)
+            error::finite_positive(
+                "first-mode damping C₁₁ (the unit amplitude at resonance scales with it)",
+                c11,
+            )?;
             let a = c11 * beta1 * beta1 / 2.0;
             project_function(&|s| a * phi1.value(s), n)?
         }

@@ -27,10 +27,11 @@ use crate::error::{self, ParameterError};
 use crate::model::continuum;
 use crate::model::forcing::{project, project_function};
 pub use crate::model::forcing::{Forcing, SpatialProfile};
+use crate::model::ranges;
 use nalgebra::{DMatrix, DVector};
 
-/// Largest number of modes N accepted.
-pub const MAX_MODES: usize = 400;
+/// Largest number of modes N accepted ([`crate::model::ranges::MODES`]).
+pub const MAX_MODES: usize = ranges::MODES.max as usize;
 
 /// Which side of the switching surface φ(1)ᵀη = d₀ the beam is on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
@@ -136,6 +137,9 @@ pub fn material_damping_from_zeta1(zeta1: f64) -> f64 {
 }
 
 /// (β₁⁻)², the first free frequency; the time and frequency unit of the CLI.
+///
+/// # Panics
+/// Never: the first free root always exists.
 pub fn first_frequency() -> f64 {
     continuum::free_root(1).expect("mode 1 exists").powi(2)
 }
@@ -158,9 +162,26 @@ pub struct GalerkinModel {
 
 impl GalerkinModel {
     /// Validates the parameters and assembles the model.
+    ///
+    /// # Errors
+    /// [`ParameterError`] for N out of 1…[`MAX_MODES`]; k negative, not finite or above 1e12 k₁;
+    /// ω/(β₁⁻)² outside 1e-3…1e4; a gap that is not finite; α or γ negative or not finite; or a
+    /// forcing profile that needs damping it lacks or projects to an amplitude that is not finite.
     pub fn new(params: GalerkinParams) -> Result<Self, ParameterError> {
         let n = error::count_in_range("modes N", params.modes, MAX_MODES)?;
         error::finite_non_negative("stop stiffness k", params.stop_stiffness)?;
+        // the supported ranges (in the units users give them), with a hair of slack for the
+        // rounding of k/k₁·k₁ and ω/(β₁⁻)²·(β₁⁻)² back to the user's value
+        let slack = 1.0 + 1e-12;
+        if params.stop_stiffness > ranges::STOP_STIFFNESS.hi * first_modal_stiffness() * slack {
+            ranges::STOP_STIFFNESS.check(params.stop_stiffness / first_modal_stiffness())?;
+        }
+        if let Some(f) = &params.forcing {
+            let w = f.omega / first_frequency();
+            if !(w * slack >= ranges::OMEGA.lo && w <= ranges::OMEGA.hi * slack) {
+                ranges::OMEGA.check(w)?;
+            }
+        }
         error::finite("gap d₀", params.gap)?;
         error::finite_non_negative("viscous damping α", params.viscous_damping)?;
         error::finite_non_negative("material damping γ", params.material_damping)?;
@@ -190,6 +211,10 @@ impl GalerkinModel {
     /// and tip gain g, not only the cantilever's mode 1. The compliant contact adds
     /// (k_s/4)g²(x − d₀/g) beyond the stop; the rigid-impact model ([`crate::engine::rigid`]) uses
     /// only its position. It has no beam profile, so [`Self::modal_state`] refuses it.
+    ///
+    /// # Errors
+    /// [`ParameterError`] when k, ω or g is not finite and > 0, c or the stop stiffness is not
+    /// finite and ≥ 0, or F or d₀ is not finite.
     pub fn oscillator(o: &Oscillator) -> Result<Self, ParameterError> {
         error::finite_positive("oscillator stiffness k", o.stiffness)?;
         error::finite_non_negative("oscillator damping c", o.damping)?;
@@ -218,6 +243,11 @@ impl GalerkinModel {
     /// beam, [`crate::model::fe`]): K⁻ = diag(k_j), tip values t_j, damping diag(c_j), forcing
     /// amplitudes f_j, so that K⁺ = K⁻ + (k/4)ttᵀ and F⁺ = F⁻ + (kd₀/4)t as in eq (9). It has
     /// no continuum profile, so [`Self::modal_state`] refuses it.
+    ///
+    /// # Errors
+    /// [`ParameterError`] for no modes or more than 2·[`MAX_MODES`], lists of unequal length, a
+    /// modal stiffness not finite and > 0, a negative or non-finite damping, a tip value, forcing
+    /// amplitude, gap or stop stiffness that is not finite (or k < 0), or a forcing ω ≤ 0.
     pub fn from_modes(modes: &FreeModes, params: GalerkinParams) -> Result<Self, ParameterError> {
         let n = error::count_in_range("modes N", modes.stiffness.len(), 2 * MAX_MODES)?;
         error::finite_non_negative("stop stiffness k", params.stop_stiffness)?;
@@ -314,6 +344,9 @@ impl GalerkinModel {
 
     /// The same model forced at frequency ω instead (the modal forcing amplitudes do not
     /// depend on ω, so nothing is recomputed); an error without forcing or for a bad ω.
+    ///
+    /// # Errors
+    /// [`ParameterError`] for ω not finite and > 0, or a model without forcing.
     pub fn with_omega(&self, omega: f64) -> Result<Self, ParameterError> {
         error::finite_positive("forcing frequency ω", omega)?;
         let mut m = self.clone();
@@ -333,6 +366,10 @@ impl GalerkinModel {
     /// The same model with its gap d₀ set to `gap_over_free` times A_free(ω), the free tip
     /// amplitude at the forcing frequency ([`Self::free_tip_amplitude`]): a gap chosen as a
     /// fraction of the motion actually forced is reached at any ω (< 1 means contact).
+    ///
+    /// # Errors
+    /// [`ParameterError`] for a ratio that is not finite, a model without forcing (A_free = 0), or
+    /// a resulting gap that is not finite.
     pub fn with_gap_over_free(&self, gap_over_free: f64) -> Result<Self, ParameterError> {
         error::finite("gap d₀/A_free", gap_over_free)?;
         let a_free = self.free_tip_amplitude().0;
@@ -352,6 +389,10 @@ impl GalerkinModel {
     /// The modal state x = [η; η̇] of a beam with displacement w(s) and velocity w_t(s):
     /// η_j = ∫₀¹ φ_j w ds, η̇_j = ∫₀¹ φ_j w_t ds (the L² projection onto the N modes; the
     /// rest of the profile is not represented). Errors if a projection is not finite.
+    ///
+    /// # Errors
+    /// [`ParameterError`] for a model without a beam profile ([`Self::oscillator`],
+    /// [`Self::from_modes`]) or a projection that is not finite.
     pub fn modal_state(
         &self,
         displacement: &dyn Fn(f64) -> f64,
@@ -403,9 +444,36 @@ impl GalerkinModel {
         &self.forcing_amplitude * (omega * t).cos() + self.stop_preload(region)
     }
 
+    /// A vector of this model's length for `what` (`len` entries wanted).
+    fn check_len(&self, what: &str, got: usize, len: usize) -> Result<(), ParameterError> {
+        if got == len {
+            Ok(())
+        } else {
+            Err(ParameterError::new(
+                what,
+                format!("a vector of length {got}"),
+                &format!("length {len} for this {}-mode model", self.modes()),
+            ))
+        }
+    }
+
     /// The vector field of `region` at state x = [η; η̇] and time t: ẋ = A^±x + [0; F^±(t)]
     /// (eqs 34–35).
-    pub fn vector_field(&self, x: &DVector<f64>, t: f64, region: Region) -> DVector<f64> {
+    ///
+    /// # Errors
+    /// [`ParameterError`] for a state whose length is not 2N.
+    pub fn vector_field(
+        &self,
+        x: &DVector<f64>,
+        t: f64,
+        region: Region,
+    ) -> Result<DVector<f64>, ParameterError> {
+        self.check_len("state [η; η̇]", x.len(), 2 * self.modes())?;
+        Ok(self.field(x, t, region))
+    }
+
+    /// [`Self::vector_field`] of a state the crate built (its length is 2N).
+    pub(crate) fn field(&self, x: &DVector<f64>, t: f64, region: Region) -> DVector<f64> {
         let n = self.modes();
         let mut f = self.state_matrix(region) * x;
         let force = self.force(t, region);
@@ -416,24 +484,68 @@ impl GalerkinModel {
     }
 
     /// The switching function φ(1)ᵀη − d₀: negative in free flight, positive in contact.
-    pub fn switching_function(&self, eta: &DVector<f64>) -> f64 {
-        self.tip.dot(eta) - self.params.gap
+    ///
+    /// # Errors
+    /// [`ParameterError`] for a displacement η whose length is not N.
+    pub fn switching_function(&self, eta: &DVector<f64>) -> Result<f64, ParameterError> {
+        self.check_len("displacement η", eta.len(), self.modes())?;
+        Ok(self.gap_of(eta.rows(0, eta.len())))
+    }
+
+    /// φ(1)ᵀη − d₀ of the first N entries of a state the crate built.
+    pub(crate) fn gap_of(&self, eta: nalgebra::DVectorView<'_, f64>) -> f64 {
+        self.tip.dot(&eta) - self.params.gap
+    }
+
+    /// How far beyond the stop state x = [η; η̇] puts the tip (φ(1)ᵀη − d₀), when that is
+    /// more than 1e-9 of the length scale ([`Self::length_scale`]); None for a state a
+    /// rigid stop admits (or one of the wrong length, which the runs refuse by name). A
+    /// start drawn at random is checked with it before a run, so that the refusal can name
+    /// the option that drew it.
+    pub fn beyond_the_stop(&self, x: &DVector<f64>) -> Option<f64> {
+        let n = self.modes();
+        if x.len() != 2 * n {
+            return None;
+        }
+        let g = self.gap_of(x.rows(0, n));
+        (g > 1e-9 * self.length_scale(x.rows(0, n))).then_some(g)
+    }
+
+    /// The length a distance from the stop is judged on: the state's own, |d₀| +
+    /// |φ(1)|·‖η‖∞, and at least the motion's, A_free(ω). (With d₀ = 0 a state on the stop
+    /// has a displacement of zero scale — one mode on the stop has η = 0 — so the state's
+    /// own would make round-off of 1e-18 count as a distance.)
+    pub fn length_scale(&self, eta: nalgebra::DVectorView<'_, f64>) -> f64 {
+        let own = self.params.gap.abs() + self.tip.amax() * eta.amax();
+        own.max(self.free_tip_amplitude().0)
     }
 
     /// The region a displacement η lies in (the surface itself counts as contact, §2.1).
-    pub fn region_of(&self, eta: &DVector<f64>) -> Region {
-        if self.switching_function(eta) >= 0.0 {
+    ///
+    /// # Errors
+    /// [`ParameterError`] for a displacement η whose length is not N.
+    pub fn region_of(&self, eta: &DVector<f64>) -> Result<Region, ParameterError> {
+        Ok(if self.switching_function(eta)? >= 0.0 {
             Region::Contact
         } else {
             Region::Free
-        }
+        })
     }
 
     /// The region a state x = [η; η̇] at time t starts in: contact if d > d₀; on the
     /// surface, contact if the tip moves into the stop, or — at zero velocity — if its
     /// free-flight acceleration points into the stop. So the paper's start from rest at
     /// d₀ = 0, written x⁺(0) = 0 in §5.2, begins in contact rather than with a switch.
-    pub fn starting_region(&self, x: &DVector<f64>, t: f64) -> Region {
+    ///
+    /// # Errors
+    /// [`ParameterError`] for a state whose length is not 2N.
+    pub fn starting_region(&self, x: &DVector<f64>, t: f64) -> Result<Region, ParameterError> {
+        self.check_len("state [η; η̇]", x.len(), 2 * self.modes())?;
+        Ok(self.start_region(x, t))
+    }
+
+    /// [`Self::starting_region`] of a state the crate built (its length is 2N).
+    pub(crate) fn start_region(&self, x: &DVector<f64>, t: f64) -> Region {
         let n = self.modes();
         let (eta, vel) = (x.rows(0, n), x.rows(n, n));
         let d = self.tip.dot(&eta) - self.params.gap;
@@ -551,6 +663,19 @@ mod tests {
         assert!(err(GalerkinParams::new(2, 1.0).with_gap(f64::NAN)).contains("gap d₀"));
         assert!(err(GalerkinParams::new(2, 1.0).with_zeta1(-0.1)).contains("material damping"));
         let bad_omega = GalerkinParams::new(2, 1.0).with_forcing(Forcing::paper(0.0));
-        assert!(err(bad_omega).contains("forcing frequency ω"));
+        assert!(err(bad_omega).contains("omega (ω/(β₁⁻)²)"));
+        // the supported ranges hold here too, not only in the front ends: ω = 1e-300 and a
+        // stop beyond 1e12k₁ are refused, and the paper's unit forcing of an undamped beam
+        // (amplitude C₁₁(β₁⁻)²/2 = 0: silently no forcing) is refused
+        let tiny_omega = GalerkinParams::new(2, 1.0)
+            .with_zeta1(0.01)
+            .with_forcing(Forcing::paper(1e-300));
+        assert!(err(tiny_omega).starts_with("invalid omega (ω/(β₁⁻)²): got 2.84"));
+        let stiff = GalerkinParams::new(2, 2e12 * first_modal_stiffness());
+        assert!(err(stiff).starts_with("invalid stop_stiffness (k/k₁): got 2e12"));
+        let at_limit = GalerkinParams::new(2, 1e12 * first_modal_stiffness());
+        assert!(GalerkinModel::new(at_limit).is_ok());
+        let undamped = GalerkinParams::new(2, 1.0).with_forcing(Forcing::paper(first_frequency()));
+        assert!(err(undamped).contains("first-mode damping C₁₁"));
     }
 }

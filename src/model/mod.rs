@@ -7,4 +7,6 @@ pub mod fe;
 pub mod forcing;
 pub mod galerkin;
 pub mod problems;
+pub mod ranges;
 pub mod restitution;
+pub mod spec;

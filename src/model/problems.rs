@@ -36,6 +36,10 @@ pub struct Forced {
 
 impl Forced {
     /// The model (errors name the parameter that is out of range).
+    ///
+    /// # Errors
+    /// The [`ParameterError`] of [`GalerkinModel::new`]: N out of 1…400, k/k₁ or ω/(β₁⁻)² out of
+    /// its range, a gap that is not finite, or ζ₁ not > 0 (the forcing profile scales with it).
     pub fn model(&self) -> Result<GalerkinModel, ParameterError> {
         let profile = if self.printed_eq37_amplitude {
             SpatialProfile::PaperEq37AsPrinted
@@ -59,6 +63,9 @@ impl Forced {
     /// the forcing frequency (the linear steady response without the stop), rather than at
     /// resonance: a gap chosen as a fraction of the motion actually forced is reached at
     /// any ω (`gap_over_free` < 1 means contact).
+    ///
+    /// # Errors
+    /// [`ParameterError`] for a ratio that is not finite, or the errors of [`Forced::model`].
     pub fn with_gap_over_free(self, gap_over_free: f64) -> Result<Self, ParameterError> {
         crate::error::finite("gap d₀/A_free", gap_over_free)?;
         let a_free = Forced { gap: 0.0, ..self }.model()?.free_tip_amplitude().0;
@@ -125,6 +132,10 @@ pub fn figure9(modes: usize, gap: f64) -> Forced {
 /// One contact at k = ε⁻² (Figure 3(a)–(c), §4.1–4.3): N modes, viscous damping α, no
 /// forcing, d₀ = 0, from η = 0 with η̇ = ε⁻¹e₁ (the tip entering the stop). Returns the
 /// model and the initial state.
+///
+/// # Errors
+/// [`ParameterError`] for ε not finite and > 0, N out of 1…400, ε⁻² above the stiffness range,
+/// or α negative or not finite.
 pub fn one_contact(
     modes: usize,
     eps: f64,

@@ -19,7 +19,7 @@ use crate::model::continuum;
 use nalgebra::DMatrix;
 
 /// Largest N accepted by the laws.
-pub const MAX_MODES: usize = 400;
+pub const MAX_MODES: usize = crate::model::ranges::MODES.max as usize;
 
 fn check(n: usize, r: f64) -> Result<(), ParameterError> {
     error::count_in_range("modes N", n, MAX_MODES)?;
@@ -34,6 +34,9 @@ fn check(n: usize, r: f64) -> Result<(), ParameterError> {
 }
 
 /// \[R\]_IR of eq (14): (1/N)[(r + 1)𝟙𝟙ᵀ − N I].
+///
+/// # Errors
+/// [`ParameterError`] for N out of 1…[`MAX_MODES`] or r outside [0, 1].
 pub fn impulse_response(n: usize, r: f64) -> Result<DMatrix<f64>, ParameterError> {
     check(n, r)?;
     let nf = n as f64;
@@ -43,6 +46,9 @@ pub fn impulse_response(n: usize, r: f64) -> Result<DMatrix<f64>, ParameterError
 }
 
 /// \[R\]_N of eq (29): (1 − 2r_e) I + ((3r_e − 1)/N) 𝟙𝟙ᵀ.
+///
+/// # Errors
+/// [`ParameterError`] for N out of 1…[`MAX_MODES`] or r_e outside [0, 1].
 pub fn stiffness_limit(n: usize, r_e: f64) -> Result<DMatrix<f64>, ParameterError> {
     check(n, r_e)?;
     let nf = n as f64;
@@ -54,13 +60,32 @@ pub fn stiffness_limit(n: usize, r_e: f64) -> Result<DMatrix<f64>, ParameterErro
 /// \[R\]_N from eq (28): V diag(1 − 2r_e, …, 1 − 2r_e, r_e) Vᵀ for an orthogonal V whose last
 /// column is the fast (stop) mode. With V from the eigenvectors of K⁺ as k → ∞ this is
 /// eq (29); for finite k it is the law the compliant model's own eigenvectors imply.
-pub fn from_eigenvectors(v: &DMatrix<f64>, r_e: f64) -> DMatrix<f64> {
+///
+/// # Errors
+/// [`ParameterError`] for a V that is not square, has an entry that is not finite or is
+/// empty, or an r_e outside [0, 1].
+pub fn from_eigenvectors(v: &DMatrix<f64>, r_e: f64) -> Result<DMatrix<f64>, ParameterError> {
     let n = v.ncols();
+    if v.nrows() != n || n == 0 {
+        return Err(ParameterError::new(
+            "eigenvector matrix [V]",
+            format!("{} × {}", v.nrows(), n),
+            "a square N × N matrix, N ≥ 1",
+        ));
+    }
+    if v.iter().any(|x| !x.is_finite()) {
+        return Err(ParameterError::new(
+            "eigenvector matrix [V]",
+            "an entry that is not finite",
+            "finite entries",
+        ));
+    }
+    check(n, r_e)?;
     let mut d = DMatrix::from_element(n, n, 0.0);
     for i in 0..n {
         d[(i, i)] = if i + 1 == n { r_e } else { 1.0 - 2.0 * r_e };
     }
-    v * d * v.transpose()
+    Ok(v * d * v.transpose())
 }
 
 /// \[V\] of eq (21): the k → ∞ eigenvectors of K⁺ for N = 2, slow mode first.
@@ -85,6 +110,11 @@ pub fn equally_spaced_points(n: usize) -> Vec<f64> {
 
 /// \[R\]_C of eq (12) with collocation points `points` (N − 1 distinct values in (0, 1)) and
 /// the impact at s_I = 1: Φ⁻¹ diag(−1, …, −1, r) Φ, Φ's rows φ(s_j)ᵀ and φ(1)ᵀ.
+///
+/// # Errors
+/// [`ParameterError`] for N out of 1…[`MAX_MODES`], r outside [0, 1], not N − 1 points, a
+/// point outside (0, 1), repeated points, or points whose modal matrix is singular or has
+/// condition above 1e12.
 pub fn collocation(n: usize, r: f64, points: &[f64]) -> Result<DMatrix<f64>, ParameterError> {
     check(n, r)?;
     if points.len() != n - 1 {
@@ -139,6 +169,20 @@ pub fn collocation(n: usize, r: f64, points: &[f64]) -> Result<DMatrix<f64>, Par
 }
 
 /// Post-impact modal velocities η̇⁺ = −\[R\]η̇⁻ (eq 11).
-pub fn apply(r: &DMatrix<f64>, pre: &nalgebra::DVector<f64>) -> nalgebra::DVector<f64> {
-    -(r * pre)
+///
+/// # Errors
+/// [`ParameterError`] when \[R\] is not N × N for the N velocities given.
+pub fn apply(
+    r: &DMatrix<f64>,
+    pre: &nalgebra::DVector<f64>,
+) -> Result<nalgebra::DVector<f64>, ParameterError> {
+    let n = pre.len();
+    if r.nrows() != n || r.ncols() != n {
+        return Err(ParameterError::new(
+            "restitution law [R]",
+            format!("{} × {} for {n} velocities", r.nrows(), r.ncols()),
+            "an N × N matrix for N modal velocities",
+        ));
+    }
+    Ok(-(r * pre))
 }

@@ -50,6 +50,10 @@ impl std::fmt::Display for CiteError {
 impl Citation {
     /// `key` (or every key number when `None`) of scene `spec` from the book's published
     /// numbers.
+    ///
+    /// # Errors
+    /// [`CiteError::Unpublished`] when this build's published snapshots do not parse or hold no
+    /// numbers of the scene; [`CiteError::Key`] for a key the scene does not have.
     pub fn published(spec: &'static dyn Entry, key: Option<&str>) -> Result<Self, CiteError> {
         let published = diff::published().map_err(CiteError::Unpublished)?;
         let all = published
@@ -74,6 +78,9 @@ impl Citation {
     }
 
     /// `key` (or every key number when `None`) of a computed output of scene `spec`.
+    ///
+    /// # Errors
+    /// [`ParameterError`] for a key that is not among the output's key numbers.
     pub fn of_output(
         spec: &'static dyn Entry,
         out: &SceneOutput,

@@ -18,6 +18,10 @@ include!(concat!(env!("OUT_DIR"), "/published.rs"));
 
 /// The published key numbers this build was made with: the committed snapshots
 /// `tests/snapshots/published__book-*.snap`, read at compile time (book resolution).
+///
+/// # Errors
+/// A message naming the scene when a committed snapshot does not parse
+/// ([`KeyNumbers::from_snapshot`]).
 pub fn published() -> Result<Vec<SceneKeys>, String> {
     PUBLISHED_SNAPSHOTS
         .iter()
@@ -34,6 +38,10 @@ pub fn published() -> Result<Vec<SceneKeys>, String> {
 
 /// A scene's key numbers from its `key_numbers.json` document (what `cantilever scene`
 /// and the book write).
+///
+/// # Errors
+/// A message when `doc` has no `scene` name or no `key_numbers`, or the errors of
+/// [`KeyNumbers::from_json`].
 pub fn from_document(doc: &serde_json::Value) -> Result<SceneKeys, String> {
     let scene = doc
         .get("scene")
@@ -154,6 +162,9 @@ impl Diff {
 /// Compares `old` with `new` scene by scene. Fails when a scene is on both sides at
 /// different resolutions (its numbers would differ by resolution, not by a change), saying
 /// which.
+///
+/// # Errors
+/// A message naming the scene when it is on both sides at different resolutions.
 pub fn compare(old: &[SceneKeys], new: &[SceneKeys]) -> Result<Diff, String> {
     let mut diff = Diff::default();
     for n in new {

@@ -182,6 +182,10 @@ fn target(path: &Path) -> Target {
 /// Reads a text file of at most `max_bytes` (a key-number file, a state, a shard), so a
 /// wrong path — `/dev/zero`, a disk image — is refused after `max_bytes`, not after
 /// memory runs out. `flag` names the option and `what` the file expected, in the error.
+///
+/// # Errors
+/// [`ParameterError`] naming `flag` when the path is a directory, cannot be opened, is not
+/// UTF-8 text, or is longer than `max_bytes`.
 pub fn read_capped(
     flag: &str,
     path: &Path,
@@ -220,6 +224,10 @@ fn human_bytes(n: u64) -> String {
 /// Checks, before any work, that `path` can be written as a file (see the module doc):
 /// refused when it is a directory, a block device or a socket, or when its directory does
 /// not exist or does not accept a file. `flag` names the option in the error.
+///
+/// # Errors
+/// [`ParameterError`] naming `flag` for a path that is refused (a directory, a block device,
+/// a socket, a bad chain of links), ends in `/`, or lies in a missing or read-only directory.
 pub fn check_writable(flag: &str, path: &Path) -> Result<(), ParameterError> {
     let bad = |why: String| ParameterError::new(flag, path.display(), &why);
     // "new/" names a directory: a file cannot be created there (the system would say so
@@ -254,6 +262,10 @@ pub fn check_writable(flag: &str, path: &Path) -> Result<(), ParameterError> {
 
 /// Writes `text` to `path` as the module doc says: atomically for a regular file (or none),
 /// into a link's target, through a FIFO or character device; an error for anything else.
+///
+/// # Errors
+/// [`Error::Io`] for a target that is refused (a directory, a block device, a socket, a bad
+/// chain of links) or a write, flush or rename that fails.
 pub fn write_atomically(path: &Path, text: &str) -> Result<(), Error> {
     match target(path) {
         Target::Refuse(why) => Err(Error::Io {
@@ -316,6 +328,10 @@ fn owned(dir: &Path, names: &[&str]) -> bool {
 /// concurrent writer waits). When `dir` holds files of its own (say `--out .`), each file
 /// is written atomically in place instead, and the others are left alone. A link to a
 /// directory is followed and kept.
+///
+/// # Errors
+/// [`Error::Io`] when the parent cannot be created, the lock cannot be taken, `dir` is not a
+/// directory, or a file cannot be written or swapped in.
 pub fn write_set(dir: &Path, files: &[(String, String)]) -> Result<(), Error> {
     let dir = match std::fs::canonicalize(dir) {
         Ok(real) => real,

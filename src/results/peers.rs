@@ -409,16 +409,28 @@ fn parse<T: serde::de::DeserializeOwned>(name: &str, text: &str) -> Result<T, St
 }
 
 /// Parses a simulation problem's file and checks its format and checksum.
+///
+/// # Errors
+/// A message naming `name` when the text is not JSON, its format is not this one, its
+/// checksum does not match, or its fields do not read as a [`Simulation`].
 pub fn parse_simulation(name: &str, text: &str) -> Result<Simulation, String> {
     parse(name, text)
 }
 
 /// Parses the orbits' file and checks its format and checksum.
+///
+/// # Errors
+/// A message when the text is not JSON, its format is not this one, its checksum does not
+/// match, or its fields do not read as [`Orbits`].
 pub fn parse_orbits(text: &str) -> Result<Orbits, String> {
     parse("orbits", text)
 }
 
 /// The committed simulation files (by name) and the orbits' file.
+///
+/// # Errors
+/// The message of [`parse_simulation`] or [`parse_orbits`] for a committed file that does not
+/// check.
 pub fn committed() -> Result<(Vec<(String, Simulation)>, Orbits), String> {
     let mut sims = Vec::new();
     for (name, text) in &FILES[..5] {
@@ -428,6 +440,10 @@ pub fn committed() -> Result<(Vec<(String, Simulation)>, Orbits), String> {
 }
 
 /// One committed simulation problem's file, by name, parsed and checked.
+///
+/// # Errors
+/// A message for a name that is not a committed problem, or the errors of
+/// [`parse_simulation`].
 pub fn committed_problem(name: &str) -> Result<Simulation, String> {
     let (_, text) = FILES[..5]
         .iter()
@@ -497,6 +513,10 @@ fn forced(p: &ProblemSpec) -> Forced {
 /// The model matrices of a forced problem as the peer scripts read them
 /// (`examples/peer_problem.rs` prints them): K^±, C, the modal forcing, φ(1), the contact
 /// preload, T, and the restitution laws \[R\]_IR and \[R\]_N with coefficient `r`.
+///
+/// # Errors
+/// [`Error::Parameter`] for a case the model refuses or r outside [0, 1]; [`Error::Flow`]
+/// when a region's flow cannot be built.
 pub fn matrices(case: &Forced, r: f64) -> Result<Value, Error> {
     let model = case.model()?;
     let n = model.modes();
@@ -533,12 +553,20 @@ pub fn matrices(case: &Forced, r: f64) -> Result<Value, Error> {
 }
 
 /// The matrices of a committed problem, as the library gives them now.
+///
+/// # Errors
+/// As [`matrices`].
 pub fn problem_matrices(p: &ProblemSpec) -> Result<Value, Error> {
     matrices(&forced(p), p.restitution.unwrap_or(0.8))
 }
 
 /// This project's run of a committed problem, recomputed by the library now: the state at
 /// the end of each period (k = 1 … P) — the command line's run, through the same models.
+///
+/// # Errors
+/// [`Error::Parameter`] for a problem out of range, a bad initial state or r outside [0, 1];
+/// [`Error::Flow`] when a flow cannot be built; a run's [`Error::Chatter`] or
+/// [`Error::Invariant`].
 pub fn recompute(p: &ProblemSpec) -> Result<Vec<Vec<f64>>, Error> {
     let sim = Simulator::new(forced(p).model()?)?;
     let x0 = DVector::from_column_slice(&p.initial_state);
@@ -558,6 +586,10 @@ pub fn recompute(p: &ProblemSpec) -> Result<Vec<Vec<f64>>, Error> {
 
 /// This project's orbit of a committed case, recomputed by the library now (`cantilever
 /// orbit … --periods 0 --period 1` from the case's start).
+///
+/// # Errors
+/// [`Error::Parameter`] for a case out of range or a bad start; [`Error::Flow`] when a flow
+/// cannot be built; the errors of [`shooting::shoot`] ([`Error::NotConverged`], ...).
 pub fn recompute_orbit(problem: &OrbitProblem, case: &OrbitCase) -> Result<PeriodicOrbit, Error> {
     let f = Forced {
         modes: case.modes,

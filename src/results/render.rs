@@ -66,6 +66,9 @@ pub fn tick(x: &f64) -> String {
 
 /// Draws the mesh of a log–log `chart` with the book's label sizes, the given axis
 /// descriptions and ticks as powers of ten.
+///
+/// # Errors
+/// [`RenderError`] when the backend fails to draw the mesh.
 pub fn log_log_mesh<'a, DB, X, Y>(
     chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
     x_desc: &str,
@@ -87,6 +90,9 @@ where
 
 /// Draws the axes of a map over (ω, log₁₀ k): ω/(β₁⁻)² horizontally with `x_labels`
 /// ticks, k/k₁ vertically with a tick per decade of [l0, l1], no grid.
+///
+/// # Errors
+/// [`RenderError`] when the backend fails to draw the mesh.
 pub fn omega_log_k_mesh<'a, DB: DrawingBackend + 'a>(
     chart: &mut ChartContext<
         'a,
@@ -279,6 +285,9 @@ pub fn dashed_key(
 }
 
 /// Draws the series labels of `chart` in a framed, half-transparent box at `position`.
+///
+/// # Errors
+/// [`RenderError`] when the backend fails to draw the legend.
 pub fn draw_legend<'a, DB, CT>(
     chart: &mut ChartContext<'a, DB, CT>,
     position: SeriesLabelPosition,

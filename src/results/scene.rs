@@ -24,33 +24,7 @@ pub enum Resolution {
     Test,
 }
 
-/// Reports the progress of long work (sweeps). The command line shows a bar on a
-/// terminal; the library itself prints nothing.
-pub trait Progress: Sync {
-    /// A task of `total` units named `what` starts; its units are reported to the handle,
-    /// and it ends when the handle is dropped.
-    fn task(&self, what: &str, total: u64) -> Box<dyn Task + '_>;
-}
-
-/// One task's progress.
-pub trait Task: Sync {
-    /// `units` more are done.
-    fn advance(&self, units: u64);
-}
-
-/// Progress that goes nowhere.
-#[derive(Debug, Clone, Copy, Default)]
-pub struct Silent;
-
-impl Task for Silent {
-    fn advance(&self, _: u64) {}
-}
-
-impl Progress for Silent {
-    fn task(&self, _: &str, _: u64) -> Box<dyn Task + '_> {
-        Box::new(Silent)
-    }
-}
+pub use crate::base::progress::{Progress, Silent, Task};
 
 /// How a result of the paper fared.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -175,12 +149,19 @@ pub trait Scene: Sync {
     /// The parameters at a resolution.
     fn params(resolution: Resolution) -> Self::Params;
     /// The computation (pure, apart from reporting progress).
+    ///
+    /// # Errors
+    /// What the scene's computation refuses: a parameter out of range (`Error::Parameter`), a
+    /// flow that cannot be built, or a run the simulator refuses (chatter, a broken invariant).
     fn compute(params: &Self::Params, progress: &dyn Progress) -> Result<Self::Data, Error>;
     /// The key numbers, each rounded to the digits the method resolves.
     fn key_numbers(data: &Self::Data) -> KeyNumbers;
     /// The verdict on the paper's claim.
     fn verdict(data: &Self::Data) -> Verdict;
     /// Plots and tables.
+    ///
+    /// # Errors
+    /// [`RenderError`] when drawing a plot fails.
     fn render(data: &Self::Data) -> Result<Rendered, RenderError>;
 }
 
@@ -233,6 +214,10 @@ pub trait Entry: Sync {
     /// Its parameters at a resolution, as written into its outputs (no computation).
     fn params_json(&self, resolution: Resolution) -> serde_json::Value;
     /// Computes, picks the key numbers and the verdict, renders.
+    ///
+    /// # Errors
+    /// The errors of [`Scene::compute`]; [`Error::Render`] when drawing fails;
+    /// [`Error::Unsupported`] when the data or parameters cannot be written as JSON.
     fn run(&self, resolution: Resolution, progress: &dyn Progress) -> Result<SceneOutput, Error>;
 }
 
@@ -297,6 +282,10 @@ pub fn module_of<S: Scene>() -> &'static str {
 /// Runs scene `S` with parameters of the caller's choosing (a variant of its model, say) and
 /// gives the same output as [`Entry::run`] does for its own. `resolution` is recorded in
 /// the provenance.
+///
+/// # Errors
+/// As [`Entry::run`]: the errors of [`Scene::compute`], [`Error::Render`], or
+/// [`Error::Unsupported`] for data that cannot be written as JSON.
 pub fn run_with<S: Scene>(
     params: &S::Params,
     resolution: Resolution,
@@ -315,6 +304,10 @@ pub fn run_with<S: Scene>(
 
 /// The key numbers, verdict and rendering of data computed elsewhere (a sweep computed in
 /// shards and merged): the same output as [`Entry::run`] gives for the same data.
+///
+/// # Errors
+/// [`Error::Unsupported`] when the data or parameters cannot be written as JSON;
+/// [`Error::Render`] when drawing fails.
 pub fn output_of<S: Scene>(
     params: &S::Params,
     data: &S::Data,
@@ -364,6 +357,9 @@ pub fn key_numbers_document(spec: &dyn Entry, out: &SceneOutput) -> serde_json::
 /// provenance), `key_numbers.json` ([`key_numbers_document`]) and `verdict.json` into
 /// `dir`, as one set ([`crate::results::files::write_set`]: never new files beside old
 /// ones).
+///
+/// # Errors
+/// [`Error::Io`] when `dir`, its lock or a file cannot be created or written.
 pub fn write(spec: &dyn Entry, out: &SceneOutput, dir: &Path) -> Result<(), Error> {
     let json = |v: &serde_json::Value| serde_json::to_string_pretty(v).unwrap_or_default();
     let mut files = vec![

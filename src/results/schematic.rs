@@ -16,6 +16,9 @@ const BIG: (&str, u32) = ("sans-serif", 30);
 const SIZE: (u32, u32) = (1000, 440);
 
 /// The schematic as SVG text.
+///
+/// # Errors
+/// [`RenderError`] when drawing fails.
 pub fn svg() -> Result<String, RenderError> {
     let mut out = String::new();
     {

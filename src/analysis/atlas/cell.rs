@@ -60,6 +60,11 @@ pub struct CellSearch<'a> {
 impl CellSearch<'_> {
     /// Searches the cell: first the previous cell's attractors as guesses, then the starts.
     /// Returns the cell and its orbits (the guesses of the next cell).
+    ///
+    /// # Errors
+    /// A run that fails outside Newton ([`Error::Chatter`] beyond the contact cap in a transient,
+    /// [`Error::Invariant`]) or [`Error::Flow`] for the multipliers; a guess whose Newton fails or
+    /// chatters only yields no orbit.
     pub fn run(&self, previous: &[Found]) -> Result<(Cell, Vec<Found>), Error> {
         let mut found: Vec<Found> = Vec::new();
         for guess in previous {
@@ -112,6 +117,10 @@ impl CellSearch<'_> {
     /// transient runs in thirds: after each, the strobe over 2·max_m periods proposes a
     /// period m, and Newton is tried once the start is within `SETTLED` of a period-m
     /// orbit (after the last third, within `NEAR_PERIODIC`).
+    ///
+    /// # Errors
+    /// As [`Self::run`]: a transient's [`Error::Chatter`] or [`Error::Invariant`], or an error of
+    /// shooting other than non-convergence or chatter (e.g. [`Error::Flow`]).
     pub fn from_start(&self, s: usize) -> Result<Option<PeriodicOrbit>, Error> {
         let mut x = self.start(s);
         let chunk = self.transient.div_ceil(3);
@@ -155,14 +164,18 @@ impl CellSearch<'_> {
     fn converge(&self, guess: &DVector<f64>, m: u64) -> Result<Option<PeriodicOrbit>, Error> {
         match shooting::shoot_within(self.sim, guess, m, NEWTON_STEPS) {
             Ok(o) => Ok(Some(o).filter(|o| o.stable)),
-            // Newton did not converge (a guess outside its basin, a multiplier at 1)
-            Err(Error::Unsupported(_)) => Ok(None),
+            // Newton did not converge (a guess outside its basin, a multiplier at 1), or the
+            // guess chatters on the stop beyond the contact cap: no stable orbit from it
+            Err(Error::NotConverged { .. } | Error::Chatter(_)) => Ok(None),
             Err(e) => Err(e),
         }
     }
 
     /// Starts `range` (beyond the cell's own) as a check of completeness: how many stable
     /// orbits they reach that `found` does not hold.
+    ///
+    /// # Errors
+    /// As [`Self::from_start`], for any start of `range`.
     pub fn missed(&self, found: &[Found], range: std::ops::Range<usize>) -> Result<usize, Error> {
         let mut all = found.to_vec();
         for s in range {
@@ -185,6 +198,10 @@ impl CellSearch<'_> {
     }
 
     /// The entry velocities (units of ωA_free) of `orbit` over one period.
+    ///
+    /// # Errors
+    /// The errors of the run over the orbit's period: [`Error::Parameter`] for a state of the
+    /// wrong length, [`Error::Chatter`] or [`Error::Invariant`].
     pub fn impact_velocities(&self, orbit: &PeriodicOrbit) -> Result<Vec<f64>, Error> {
         let mut events = Events::default();
         let x = DVector::from_column_slice(&orbit.state);

@@ -65,6 +65,23 @@ pub enum ModesRule {
     },
 }
 
+/// Changes to an atlas's grid and search, as a front end gives them (None: keep).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct AtlasOverrides {
+    /// Rows (k values, log-spaced), 1 to 4096.
+    pub k_points: Option<usize>,
+    /// Columns (ω values, linear), 1 to 4096.
+    pub omega_points: Option<usize>,
+    /// Seeded starts per cell (the first at rest), 1 to 64.
+    pub starts: Option<usize>,
+    /// Seed of the random starts.
+    pub seed: Option<u64>,
+    /// The same N at every k, 1 to 400 (instead of N matched to k).
+    pub modes: Option<usize>,
+    /// The relative accuracy of one contact that sets N at each k, 1e-6 to 0.5.
+    pub modes_tolerance: Option<f64>,
+}
+
 /// What the atlas computes.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct AtlasParams {
@@ -149,11 +166,68 @@ impl AtlasParams {
         }
     }
 
+    /// These parameters with a front end's changes to the grid and search, checked.
+    ///
+    /// # Errors
+    /// [`ParameterError`] naming the first parameter out of range, or both a fixed N and a
+    /// tolerance for matching N given.
+    pub fn with_overrides(&self, o: &AtlasOverrides) -> Result<Self, ParameterError> {
+        let mut p = self.clone();
+        if let Some(v) = o.k_points {
+            p.k_points = v;
+        }
+        if let Some(v) = o.omega_points {
+            p.omega_points = v;
+        }
+        if let Some(v) = o.starts {
+            p.starts = v;
+        }
+        if let Some(v) = o.seed {
+            p.seed = v;
+        }
+        match (o.modes, o.modes_tolerance, p.modes) {
+            (Some(_), Some(t), _) => {
+                return Err(ParameterError::new(
+                    "modes_tolerance",
+                    error::number(t),
+                    "no tolerance with a fixed N (modes): N is either fixed or matched to k",
+                ))
+            }
+            (Some(n), None, _) => p.modes = ModesRule::Fixed(n),
+            (
+                None,
+                Some(t),
+                ModesRule::Matched {
+                    stride, minimum, ..
+                },
+            ) => {
+                p.modes = ModesRule::Matched {
+                    tolerance: t,
+                    stride,
+                    minimum,
+                }
+            }
+            (None, Some(t), ModesRule::Fixed(_)) => {
+                return Err(ParameterError::new(
+                    "modes_tolerance",
+                    error::number(t),
+                    "no tolerance for an atlas of fixed N",
+                ))
+            }
+            (None, None, _) => {}
+        }
+        p.validate()?;
+        Ok(p)
+    }
+
     /// Every count in range, the ranges positive and increasing.
+    ///
+    /// # Errors
+    /// [`ParameterError`] naming the first parameter out of range.
     pub fn validate(&self) -> Result<(), ParameterError> {
         match self.modes {
             ModesRule::Fixed(n) => {
-                error::count_in_range("modes N", n, crate::model::galerkin::MAX_MODES)?;
+                error::count_in_range("modes (N)", n, crate::model::galerkin::MAX_MODES)?;
             }
             ModesRule::Matched {
                 tolerance,
@@ -163,7 +237,7 @@ impl AtlasParams {
                 error::count_in_range("modes minimum", minimum, crate::model::galerkin::MAX_MODES)?;
                 if !(1e-6..=0.5).contains(&tolerance) {
                     return Err(ParameterError::new(
-                        "modes tolerance",
+                        "modes_tolerance",
                         error::number(tolerance),
                         "a relative accuracy from 1e-6 to 0.5",
                     ));
@@ -171,16 +245,16 @@ impl AtlasParams {
                 error::count_in_range("modes stride", stride, 4096)?;
             }
         }
-        error::count_in_range("check extra modes", self.check_extra_modes, 100)?;
-        error::count_in_range("k points", self.k_points, 4096)?;
-        error::count_in_range("omega points", self.omega_points, 4096)?;
-        error::count_in_range("starts per cell", self.starts, 64)?;
-        error::count_in_range("check stride", self.check_stride, 4096)?;
-        error::count_in_range("check starts", self.check_starts, 1024)?;
-        error::count_in_range("max period", self.max_period as usize, 32)?;
+        error::count_in_range("check_extra_modes", self.check_extra_modes, 100)?;
+        error::count_in_range("k_points", self.k_points, 4096)?;
+        error::count_in_range("omega_points", self.omega_points, 4096)?;
+        error::count_in_range("starts", self.starts, 64)?;
+        error::count_in_range("check_stride", self.check_stride, 4096)?;
+        error::count_in_range("check_starts", self.check_starts, 1024)?;
+        error::count_in_range("max_period", self.max_period as usize, 32)?;
         if !(1..=1_000_000).contains(&self.transient) {
             return Err(ParameterError::new(
-                "transient periods",
+                "transient",
                 self.transient,
                 "1 to 1000000",
             ));
@@ -205,6 +279,11 @@ impl AtlasParams {
 
     /// N of every row (see [`ModesRule`]). For a matched rule this runs the one-contact
     /// experiment at each computed row (about 0.4 CPU-s each, in parallel).
+    ///
+    /// # Errors
+    /// For a matched rule, the errors of
+    /// [`crate::analysis::convergence::matched_modes`] at a computed row: [`Error::Unsupported`]
+    /// when N* is unresolved or above the model's largest N, or a parameter out of range.
     pub fn modes_by_row(&self) -> Result<Vec<usize>, Error> {
         let (tolerance, stride, minimum) = match self.modes {
             ModesRule::Fixed(n) => return Ok(vec![n; self.k_points]),
@@ -270,6 +349,10 @@ impl AtlasParams {
     }
 
     /// The forced model at N modes, k/k₁ and ω/(β₁⁻)².
+    ///
+    /// # Errors
+    /// [`ParameterError`] when the model refuses N, k, ω or the grid's ζ₁ and d₀
+    /// ([`Forced::model`]).
     pub fn model(&self, modes: usize, k: f64, omega: f64) -> Result<Forced, ParameterError> {
         let f = Forced {
             modes,
@@ -386,6 +469,10 @@ pub struct AtlasData {
 }
 
 /// Computes row i with `modes` modes; `progress` is called once per finished cell.
+///
+/// # Errors
+/// [`Error::Parameter`] for a cell's model out of range; [`Error::Flow`] when its flow cannot
+/// be built; the errors of [`CellSearch::run`] and of the check's searches.
 pub fn row(
     p: &AtlasParams,
     i: usize,

@@ -21,6 +21,9 @@ impl Shard {
     pub const WHOLE: Shard = Shard { index: 0, count: 1 };
 
     /// Parses "I/N" with 0 ≤ I < N.
+    ///
+    /// # Errors
+    /// [`ParameterError`] for text that is not `I/N` with integers 0 ≤ I < N.
     pub fn parse(text: &str) -> Result<Self, ParameterError> {
         let bad = || ParameterError::new("--shard", text, "I/N with integers 0 ≤ I < N, N ≥ 1");
         let (i, n) = text.split_once('/').ok_or_else(bad)?;
@@ -69,6 +72,10 @@ impl Partial {
     /// start indices among the cell's starts, entry velocities positive and below the
     /// energy bound on a periodic orbit's tip speed, `from_rest` naming one of its attractors,
     /// checks only on checked cells). The error names the row, the column and the field.
+    ///
+    /// # Errors
+    /// [`ParameterError`] for invalid parameters or shard, or the first row or cell that breaks
+    /// one of the rules above (naming it).
     pub fn validate(&self) -> Result<(), ParameterError> {
         let p = &self.params;
         p.validate()?;
@@ -234,6 +241,10 @@ impl Partial {
 pub const PARTIAL_FORMAT: &str = "impacting-cantilever atlas shard v2";
 
 /// Computes the rows of one shard in parallel (rayon); `progress` is called once per cell.
+///
+/// # Errors
+/// [`Error::Parameter`] for invalid parameters; the errors of
+/// [`AtlasParams::modes_by_row`] and of [`row`] for any row of the shard.
 pub fn compute_shard(
     p: &AtlasParams,
     shard: Shard,
@@ -267,12 +278,19 @@ pub fn build() -> String {
 }
 
 /// The whole atlas in one process.
+///
+/// # Errors
+/// The errors of [`compute_shard`].
 pub fn compute(p: &AtlasParams, progress: &(dyn Fn() + Sync)) -> Result<AtlasData, Error> {
     merge(vec![compute_shard(p, Shard::WHOLE, progress)?])
 }
 
 /// Combines shards into the atlas. Refuses shards of different parameters, a row given
 /// twice, or a missing row, naming it.
+///
+/// # Errors
+/// [`Error::Parameter`] for no parts, a part that fails [`Partial::validate`], another
+/// format, build or parameters, or a row malformed, given twice or missing.
 pub fn merge(parts: Vec<Partial>) -> Result<AtlasData, Error> {
     let refuse = |what: String| {
         Err(Error::Parameter(ParameterError::new(

@@ -30,10 +30,12 @@
 //! started from x + εv (v the multiplier's eigenvector) and traced as well.
 
 mod detect;
+pub mod request;
 pub mod shape;
 mod switching;
 
 pub use detect::{Bifurcation, BifurcationKind};
+pub use request::{continue_from, Continuation, ContinueOptions};
 pub use shape::{OrbitShape, ShapeObserver};
 pub use switching::trace;
 
@@ -106,6 +108,10 @@ impl<'a> Family<'a> {
     }
 
     /// The simulator at p.
+    ///
+    /// # Errors
+    /// The builder's error at p ([`Error::Parameter`] for a model out of range, for
+    /// [`Family::forced`]); [`Error::Flow`] when a region's flow cannot be built.
     pub fn simulator(&self, p: f64) -> Result<Simulator, Error> {
         Ok(Simulator::new((self.build)(p)?)?)
     }
@@ -357,6 +363,12 @@ fn polish(
 /// Traces the period-m branch through the orbit near `x0` at p = `p0`, in the direction
 /// of increasing p (`direction` > 0) or decreasing p, until it leaves `settings.range`.
 /// `x0` need not be on the orbit: it is first corrected by shooting at fixed p.
+///
+/// # Errors
+/// [`Error::Parameter`] for bad settings, p0 outside the range or a model the family refuses;
+/// the errors of [`shooting::shoot`] at p0 ([`Error::NotConverged`], ...);
+/// [`Error::Unsupported`] when that converges to a divisor of m or the start has no tangent;
+/// [`Error::NotConverged`] when the start cannot be polished; a run's error on the way.
 pub fn continue_branch(
     family: &Family,
     x0: &DVector<f64>,
@@ -390,8 +402,9 @@ pub fn continue_branch(
             "no tangent at the start p = {p0}: the orbit is at a singular point of the branch"
         ))
     })?;
-    let first = polish(family, &x, z[d], m, t[d])?.ok_or_else(|| {
-        Error::Unsupported(format!("the orbit at p = {p0} could not be polished"))
+    let first = polish(family, &x, z[d], m, t[d])?.ok_or_else(|| Error::NotConverged {
+        message: format!("the orbit at p = {p0} could not be polished"),
+        residual: None,
     })?;
     let mut points = vec![first];
     let (lo, hi) = (settings.range.0.ln(), settings.range.1.ln());
@@ -486,7 +499,9 @@ pub(crate) fn collapsed(
 
 fn validate(settings: &Settings, p0: f64) -> Result<(), Error> {
     let (a, b) = settings.range;
-    let bad = |what: &str| Err(Error::Unsupported(what.to_string()));
+    let bad = |what: &str| {
+        Err(crate::error::ParameterError::new("continuation settings", "these", what).into())
+    };
     if !(a > 0.0 && b > a && a.is_finite() && b.is_finite()) {
         return bad("the continuation range must satisfy 0 < from < to, finite");
     }

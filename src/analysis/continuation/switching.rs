@@ -12,6 +12,10 @@ use nalgebra::DVector;
 /// period-doubled branches born on it (up to `settings.max_period`, and
 /// `settings.max_branches` branches). Branch 0 runs upwards from p0, branch 1 downwards
 /// (unless branch 0 closed on itself).
+///
+/// # Errors
+/// The errors of [`continue_branch`] for each branch traced, and of the runs, monodromies and
+/// eigensolves ([`Error::Flow`]) of switching at a period doubling.
 pub fn trace(
     family: &Family,
     x0: &DVector<f64>,

@@ -137,6 +137,10 @@ fn build(d: Discretisation, s: &Setup) -> Result<Built, ParameterError> {
 }
 
 /// A_free and ωA_free of the forced run (independent of N: the forcing is ∝ φ₁).
+///
+/// # Errors
+/// [`ParameterError`] for ω/(β₁⁻)² not finite and > 0 or out of the model's range, or ζ₁
+/// not > 0 (the unit-tip forcing scales with the damping).
 pub fn free_amplitude(s: &Setup) -> Result<(f64, f64), ParameterError> {
     let omega =
         crate::error::finite_positive("ω/(β₁⁻)²", s.omega_over_w1)? * galerkin::first_frequency();
@@ -156,6 +160,11 @@ fn two_basis(n: usize, s: &Setup) -> Result<(TwoBasisModel, TwoBasisModel), Erro
 }
 
 /// Runs both experiments on discretisation `d`.
+///
+/// # Errors
+/// [`Error::Parameter`] for a set-up or size out of range; [`Error::Flow`] when a flow cannot
+/// be built; [`Error::Unsupported`] when the tip does not leave the stop in the run (or a
+/// two-basis model cannot be built); a run's [`Error::Chatter`] or [`Error::Invariant`].
 pub fn observe(d: Discretisation, s: &Setup) -> Result<Observables, Error> {
     if let Discretisation::TwoBasis(n) = d {
         let (free, forced) = two_basis(n, s)?;
@@ -183,6 +192,11 @@ pub fn observe(d: Discretisation, s: &Setup) -> Result<Observables, Error> {
 }
 
 /// The forced run only: tip displacement and velocity after `s.periods` periods from rest.
+///
+/// # Errors
+/// [`Error::Parameter`] for a set-up or size out of range; [`Error::Flow`] when a flow cannot
+/// be built; [`Error::Unsupported`] for a two-basis model that cannot be built; a run's
+/// [`Error::Chatter`] or [`Error::Invariant`].
 pub fn observe_forced(d: Discretisation, s: &Setup) -> Result<(f64, f64), Error> {
     if let Discretisation::TwoBasis(n) = d {
         let (d, v, _) = two_basis_runs::forced_from_rest(&two_basis(n, s)?.1, s.periods)?;
@@ -225,6 +239,11 @@ fn forced(model: GalerkinModel, periods: u64) -> Result<(f64, f64), Error> {
 
 /// The post-contact velocity coordinates η̇ of the Galerkin model after the one contact
 /// (for the velocity profile w_t = Σφ_jη̇_j).
+///
+/// # Errors
+/// [`Error::Parameter`] for a set-up or N out of range; [`Error::Flow`] when the flow cannot
+/// be built; [`Error::Unsupported`] when the tip does not leave the stop within one time unit;
+/// a run's [`Error::Chatter`] or [`Error::Invariant`].
 pub fn post_contact_velocities(modes: usize, s: &Setup) -> Result<Vec<f64>, Error> {
     let d = Discretisation::Galerkin(modes);
     let state = exit(&build(d, s)?, d)?.state.unwrap_or_default();
@@ -259,6 +278,10 @@ impl Study {
     /// the three finest are not in the asymptotic range (differences of alternating sign, or
     /// an order outside (0.5, 10), as at a round-off floor), the limit is the finest value
     /// and its uncertainty the spread of the three.
+    ///
+    /// # Errors
+    /// [`Error::Unsupported`] unless the finest size n is a multiple of 4 with n/2 and n/4 among
+    /// `sizes`, and `values` has one entry per size.
     pub fn new(sizes: Vec<usize>, values: Vec<f64>, scale: f64) -> Result<Self, Error> {
         let n = sizes.len();
         let at = |size: usize| sizes.iter().position(|&m| m == size).map(|i| values[i]);
@@ -385,6 +408,10 @@ impl std::fmt::Display for Needed {
 
 /// N such that β_N³ = c·k for the free roots (the paper's criterion (β_N⁺)³ ≫ k, with
 /// β_N⁺ ≈ β_N⁻ for the high modes): the smallest N with β_N³ ≥ c·k.
+///
+/// # Errors
+/// [`ParameterError`] when c·k is so large that N would pass
+/// [`continuum::MAX_MODE_INDEX`].
 pub fn criterion_modes(k: f64, c: f64) -> Result<usize, ParameterError> {
     let target = (c * k).cbrt();
     // β_N ≈ (N − 1/2)π, so start just below and step up
@@ -405,6 +432,10 @@ pub fn criterion_modes(k: f64, c: f64) -> Result<usize, ParameterError> {
 /// orbits' entry velocities still move by more than 1 % from so few modes — hence the
 /// minimum (the book uses 10, the paper's truncation, with a 1 % tolerance). An error when
 /// N* is unresolved or beyond the model's largest N.
+///
+/// # Errors
+/// [`Error::Unsupported`] when N* is unresolved or above the model's largest N; the errors of
+/// [`modes_needed`].
 pub fn matched_modes(
     k_over_k1: f64,
     tolerance: f64,
@@ -457,6 +488,11 @@ pub struct ModesNeeded {
 /// natural scale (the contact duration itself, the entry tip velocity, the entry
 /// first-mode velocity). Valid for the set-up it simulates: d₀ = 0, no forcing, first-mode
 /// impact, material damping ζ₁.
+///
+/// # Errors
+/// [`Error::Parameter`] for k/k₁ outside 1e-3…1e6, `tol` outside 1e-9…0.5 or ζ₁ outside
+/// 0…0.9; [`Error::Flow`] or a run's error at some N of [`SCAN`]; [`Error::Unsupported`] when
+/// the tip does not leave the stop.
 pub fn modes_needed(k_over_k1: f64, tol: f64, zeta1: f64) -> Result<ModesNeeded, Error> {
     let in_range = |name: &str, x: f64, lo: f64, hi: f64, allowed: &str| {
         if x.is_finite() && x >= lo && x <= hi {
@@ -535,6 +571,11 @@ pub struct PeriodicObservables {
 const SETTLE: (u64, u64, u64) = (100, 32, 4000);
 
 /// The forced run from rest continued until periodic ([`crate::analysis::orbit`]).
+///
+/// # Errors
+/// [`Error::Parameter`] for a set-up or size out of range; [`Error::Flow`] when a flow cannot
+/// be built; [`Error::Unsupported`] for a two-basis model that cannot be built; a run's
+/// [`Error::Chatter`] or [`Error::Invariant`]. An orbit that does not settle is not an error.
 pub fn periodic(d: Discretisation, s: &Setup) -> Result<PeriodicObservables, Error> {
     let (chunk, window, max) = SETTLE;
     if let Discretisation::TwoBasis(n) = d {

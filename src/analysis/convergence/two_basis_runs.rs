@@ -15,6 +15,10 @@ use nalgebra::DVector;
 /// d₀ = 0), until the tip first leaves the stop. Returns the contact duration, the exit tip
 /// velocity (in the constrained basis, before the switch), the state after the switch (free
 /// basis) and the switches (entry at t = 0 and the exit).
+///
+/// # Errors
+/// [`Error::Unsupported`] when the tip has not left the stop within four time units; the
+/// errors of [`TwoBasisModel::run_switches`] ([`Error::Invariant`]).
 pub fn one_contact(model: &TwoBasisModel) -> Result<(f64, f64, DVector<f64>, Vec<Switch>), Error> {
     let n = model.modes();
     let mut x = DVector::zeros(2 * n);
@@ -43,6 +47,10 @@ pub fn one_contact(model: &TwoBasisModel) -> Result<(f64, f64, DVector<f64>, Vec
 
 /// Tip displacement and velocity after `periods` forcing periods from rest (x⁺(0) = 0 in
 /// the region the start rule gives), and the switches on the way.
+///
+/// # Errors
+/// The errors of [`TwoBasisModel::run_until`] ([`Error::Invariant`] when a projection leaves
+/// the state beyond the surface in both bases).
 pub fn forced_from_rest(
     model: &TwoBasisModel,
     periods: u64,
@@ -65,6 +73,10 @@ pub fn forced_from_rest(
 /// relative to the state; samples in different bases never match): the one settle of
 /// every model ([`orbit::settle_until_periodic`]), `chunk` periods at a time, a `window`
 /// of samples, at most `max` periods in all.
+///
+/// # Errors
+/// The errors of [`orbit::settle_until_periodic`] ([`Error::Invariant`]); an orbit that does
+/// not settle within `max` is not an error.
 pub fn settle(
     model: &TwoBasisModel,
     chunk: u64,

@@ -3,11 +3,10 @@
 //! writes it).
 
 use crate::progress;
-use impacting_cantilever::analysis::atlas::{self, AtlasParams, ModesRule, Partial, Shard};
-use impacting_cantilever::base::provenance::Provenance;
+use impacting_cantilever::analysis::atlas::{self, AtlasOverrides, AtlasParams, Shard};
 use impacting_cantilever::error::{Error, ParameterError};
 use impacting_cantilever::results::scene::{self, Progress, Resolution, Scene};
-use impacting_cantilever::results::scenes::atlas::Atlas;
+use impacting_cantilever::results::scenes::atlas::{shards, Atlas};
 use std::path::{Path, PathBuf};
 
 /// The grid and search of the atlas (defaults: the book's).
@@ -37,7 +36,7 @@ pub struct AtlasArgs {
     /// The same N at every k, 1 to 400 (default: N matched to each k by stiffness
     /// matching, the fewest modes that give one contact to --modes-tolerance, and at
     /// least 10).
-    #[arg(long, conflicts_with = "modes_tolerance")]
+    #[arg(long)]
     pub modes: Option<usize>,
     /// The relative accuracy of one contact that sets N at each k, 1e-6 to 0.5 (default
     /// 1e-2).
@@ -56,40 +55,18 @@ pub enum ResolutionArg {
 
 /// The parameters the flags ask for.
 pub fn params(a: &AtlasArgs) -> Result<AtlasParams, ParameterError> {
-    let mut p = Atlas::params(match a.resolution {
+    let base = Atlas::params(match a.resolution {
         ResolutionArg::Book => Resolution::Book,
         ResolutionArg::Test => Resolution::Test,
     });
-    if let Some(v) = a.k_points {
-        p.k_points = v;
-    }
-    if let Some(v) = a.omega_points {
-        p.omega_points = v;
-    }
-    if let Some(v) = a.starts {
-        p.starts = v;
-    }
-    if let Some(v) = a.seed {
-        p.seed = v;
-    }
-    if let Some(n) = a.modes {
-        p.modes = ModesRule::Fixed(n);
-    }
-    if let (
-        Some(t),
-        ModesRule::Matched {
-            stride, minimum, ..
-        },
-    ) = (a.modes_tolerance, p.modes)
-    {
-        p.modes = ModesRule::Matched {
-            tolerance: t,
-            stride,
-            minimum,
-        };
-    }
-    p.validate()?;
-    Ok(p)
+    base.with_overrides(&AtlasOverrides {
+        k_points: a.k_points,
+        omega_points: a.omega_points,
+        starts: a.starts,
+        seed: a.seed,
+        modes: a.modes,
+        modes_tolerance: a.modes_tolerance,
+    })
 }
 
 /// Computes the shard and writes it; returns the rows written.
@@ -110,39 +87,11 @@ pub fn run(a: &AtlasArgs) -> Result<usize, Error> {
 
 /// Reads the shards, merges them and writes the scene's files into `out`.
 pub fn merge(files: &[PathBuf], out: &Path) -> Result<(), Error> {
-    let mut parts = Vec::with_capacity(files.len());
-    for f in files {
-        let bad = |why: String| {
-            ParameterError::new(
-                "atlas shard file",
-                f.display(),
-                &format!("an output of `cantilever atlas` ({why})"),
-            )
-        };
-        // Parsed as it is read, so a file that is not JSON (`/dev/zero`) fails at its first
-        // byte; the book's 128 × 128 atlas is ~7 MiB, the largest legal one (4096²) a few
-        // GiB, so the cap only bounds a file that is JSON but endless.
-        let file = std::fs::File::open(f).map_err(|e| bad(e.to_string()))?;
-        if file.metadata().is_ok_and(|m| m.is_dir()) {
-            return Err(bad("it is a directory".into()).into());
-        }
-        let reader = std::io::BufReader::new(std::io::Read::take(file, 8 << 30));
-        let part: Partial = serde_json::from_reader(reader).map_err(|e| bad(e.to_string()))?;
-        parts.push(part);
-    }
-    let data = atlas::merge(parts)?;
-    let resolution = if data.params == AtlasParams::book() {
-        "book"
-    } else if data.params == AtlasParams::test() {
-        "test"
-    } else {
-        "custom"
-    };
-    let output = scene::output_of::<Atlas>(
-        &data.params,
-        &data,
-        Provenance::of_scene("atlas", resolution),
-    )?;
+    let parts = files
+        .iter()
+        .map(|f| shards::read_shard(f))
+        .collect::<Result<Vec<_>, _>>()?;
+    let output = shards::merged(parts)?;
     let spec = impacting_cantilever::results::scenes::find(Atlas::NAME)?;
     scene::write(spec, &output, out)
 }

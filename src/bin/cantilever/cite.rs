@@ -19,7 +19,7 @@ pub fn run(
         Ok(Citation::of_output(spec, &out, key)?)
     } else {
         Citation::published(spec, key).map_err(|e| match e {
-            CiteError::Key(p) => super::Failure::BadInput(p),
+            CiteError::Key(p) => super::Failure::Library(p.into()),
             CiteError::Unpublished(s) => super::Failure::Other(s),
         })
     }

@@ -1,11 +1,13 @@
-//! `cantilever continue`: a branch of periodic orbits of the compliant model continued in
-//! k or ω, with its bifurcations ([`impacting_cantilever::analysis::continuation`]).
+//! `cantilever continue`: flags → the library's [`continue_from`] (the start orbit by
+//! `find_orbit`, then the branch; the same call the Python package makes) → JSON or text.
 
-use crate::orbit;
-use crate::simulate;
-use impacting_cantilever::analysis::continuation::{self, Branch, Family, Parameter, Settings};
-use impacting_cantilever::error::{Error, ParameterError};
-use nalgebra::DVector;
+use crate::model_args::{ModelArgs, StartArgs};
+use crate::orbit::{spec_and_start, SearchArgs};
+use crate::progress::Bars;
+use impacting_cantilever::analysis::continuation::{
+    continue_from, Continuation, ContinueOptions, Parameter,
+};
+use impacting_cantilever::error::Error;
 
 /// The continuation parameter, as typed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -22,7 +24,11 @@ pub enum ParameterArg {
 #[derive(Debug, Clone, clap::Args)]
 pub struct ContinueArgs {
     #[command(flatten)]
-    pub orbit: orbit::OrbitArgs,
+    pub model: ModelArgs,
+    #[command(flatten)]
+    pub start: StartArgs,
+    #[command(flatten)]
+    pub search: SearchArgs,
     /// The parameter continued; the branch starts at its value in the model options.
     #[arg(long, value_enum)]
     pub parameter: ParameterArg,
@@ -44,110 +50,27 @@ pub struct ContinueArgs {
     pub doubling_up_to: u64,
 }
 
-/// The branches and what they started from.
-#[derive(Debug, Clone, serde::Serialize)]
-pub struct Report {
-    /// "k/k₁", "ω/(β₁⁻)²" or "d₀" (in units of the free tip amplitude at resonance).
-    pub parameter: &'static str,
-    /// The starting orbit's parameter value.
-    pub start: f64,
-    /// N, the number of modes.
-    pub modes: usize,
-    /// The branches (0: towards --to; then the other way; then period-doubled ones).
-    pub branches: Vec<Branch>,
-}
-
 /// Traces the branch.
-pub fn run(args: &ContinueArgs) -> Result<Report, Error> {
-    let a = &args.orbit.model;
-    let (parameter, p0) = match args.parameter {
-        ParameterArg::StopStiffness => (Parameter::StopStiffness, a.stop_stiffness),
-        ParameterArg::Omega => (Parameter::Frequency, a.omega),
-        ParameterArg::Gap => (Parameter::Gap, a.gap),
-    };
-    // the branch is traced in ln p
-    if p0.is_nan() || p0 <= 0.0 {
-        let flag = match args.parameter {
-            ParameterArg::StopStiffness => "--stop-stiffness",
-            ParameterArg::Omega => "--omega",
-            ParameterArg::Gap => "--gap",
-        };
-        return Err(ParameterError::new(
-            flag,
-            impacting_cantilever::error::number(p0),
-            "a value > 0 to continue from (the branch is traced in the logarithm of the parameter)",
-        )
-        .into());
-    }
-    if !(args.to.is_finite() && args.to > 0.0 && args.to != p0) {
-        return Err(ParameterError::new(
-            "--to",
-            impacting_cantilever::error::number(args.to),
-            "a finite value > 0 other than the start value",
-        )
-        .into());
-    }
-    if !(1e-4..=0.2).contains(&args.max_step) {
-        return Err(ParameterError::new("--max-step", args.max_step, "1e-4 to 0.2").into());
-    }
-    if !(1..=64).contains(&args.doubling_up_to) {
-        return Err(ParameterError::new("--doubling-up-to", args.doubling_up_to, "1 to 64").into());
-    }
-    // --to must be a value the model accepts (k ≤ 1e12, say): refused here, not found
-    // out as a corrector failure at the end of the branch
-    let mut at_to = a.clone();
-    match args.parameter {
-        ParameterArg::StopStiffness => at_to.stop_stiffness = args.to,
-        ParameterArg::Omega => at_to.omega = args.to,
-        ParameterArg::Gap => at_to.gap = args.to,
-    }
-    if let Err(e) = simulate::model(&at_to) {
-        return Err(ParameterError::new(
-            "--to",
-            impacting_cantilever::error::number(args.to),
-            &format!("a value the model accepts ({e})"),
-        )
-        .into());
-    }
-    // the start orbit, found as `cantilever orbit` finds it (validates the model options)
-    let start = orbit::run(&args.orbit)?;
-    let base = a.clone();
-    let family = Family::new(parameter, move |p| {
-        let mut m = base.clone();
-        match parameter {
-            Parameter::StopStiffness => m.stop_stiffness = p,
-            Parameter::Frequency => m.omega = p,
-            Parameter::Gap => m.gap = p,
-        }
-        Ok(simulate::model(&m)?)
-    });
-    let other = if args.one_way { p0 } else { p0 * p0 / args.to };
-    let settings = Settings {
+pub fn run(args: &ContinueArgs) -> Result<Continuation, Error> {
+    let (spec, start, _) = spec_and_start(&args.model, &args.start)?;
+    let options = ContinueOptions {
+        parameter: match args.parameter {
+            ParameterArg::StopStiffness => Parameter::StopStiffness,
+            ParameterArg::Omega => Parameter::Frequency,
+            ParameterArg::Gap => Parameter::Gap,
+        },
+        to: args.to,
+        one_way: args.one_way,
         max_step: args.max_step,
-        initial_step: args.max_step.min(0.01),
-        max_period: args.doubling_up_to,
-        ..Settings::new((args.to.min(other), args.to.max(other)))
+        doubling_up_to: args.doubling_up_to,
     };
-    let x = DVector::from_vec(start.orbit.state.clone());
-    let m = start.orbit.period_m;
-    let mut branches = if args.one_way {
-        let dir = (args.to - p0).signum();
-        vec![continuation::continue_branch(
-            &family, &x, p0, m, dir, &settings,
-        )?]
-    } else {
-        continuation::trace(&family, &x, p0, m, &settings)?
-    };
-    // branch 0 runs up; put the one towards --to first
-    if !args.one_way && args.to < p0 && branches.len() > 1 {
-        branches.swap(0, 1);
-    }
-    Ok(Report {
-        parameter: parameter.symbol(),
-        start: p0,
-        modes: a.modes,
-        branches,
-    })
+    continue_from(
+        &spec,
+        &start,
+        &args.search.options(false),
+        &options,
+        &Bars::default(),
+    )
 }
 
 /// A parameter value for the text: six decimals for moderate sizes, e-notation beyond (a
@@ -161,7 +84,7 @@ pub fn num(x: f64) -> String {
 }
 
 /// Plain-text summary: each branch's extent and its bifurcations.
-pub fn to_text(r: &Report) -> String {
+pub fn to_text(r: &Continuation) -> String {
     let mut s = format!(
         "N = {}, continuation in {} from {}\n",
         r.modes,

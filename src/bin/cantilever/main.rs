@@ -11,6 +11,8 @@ mod atlas_cmd;
 mod cite;
 mod continue_cmd;
 mod diff_cmd;
+mod flags;
+mod model_args;
 mod orbit;
 mod out_dir;
 mod progress;
@@ -342,11 +344,18 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
+    let command = cli.command.name();
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
-        Err(Failure::BadInput(e)) => {
+        Err(Failure::Library(error::Error::Parameter(mut e))) => {
+            // the library names its parameters by keyword; say the flag this command has
+            e.name = flags::flag_name(command, &e.name);
             errln!("error: {e}");
             ExitCode::from(2)
+        }
+        Err(Failure::Library(e)) => {
+            errln!("error: {e}");
+            ExitCode::from(e.exit_code())
         }
         Err(Failure::Other(e)) => {
             errln!("error: {e}");
@@ -357,7 +366,8 @@ fn main() -> ExitCode {
 }
 
 enum Failure {
-    BadInput(ParameterError),
+    /// A failure of the library: its kind sets the exit status ([`error::Error::exit_code`]).
+    Library(error::Error),
     Other(String),
     /// A comparison found a difference (its report is already printed): exit 1, no message.
     Differs,
@@ -365,15 +375,32 @@ enum Failure {
 
 impl From<ParameterError> for Failure {
     fn from(e: ParameterError) -> Self {
-        Failure::BadInput(e)
+        Failure::Library(e.into())
     }
 }
 
-impl From<impacting_cantilever::error::Error> for Failure {
-    fn from(e: impacting_cantilever::error::Error) -> Self {
-        match e {
-            impacting_cantilever::error::Error::Parameter(p) => Failure::BadInput(p),
-            other => Failure::Other(other.to_string()),
+impl From<error::Error> for Failure {
+    fn from(e: error::Error) -> Self {
+        Failure::Library(e)
+    }
+}
+
+impl Command {
+    /// The subcommand's name, as typed.
+    fn name(&self) -> &'static str {
+        match self {
+            Command::List => "list",
+            Command::Scene { .. } => "scene",
+            Command::Modes { .. } => "modes",
+            Command::Simulate { .. } => "simulate",
+            Command::Cite { .. } => "cite",
+            Command::ModesNeeded { .. } => "modes-needed",
+            Command::Orbit { .. } => "orbit",
+            Command::Continue { .. } => "continue",
+            Command::Atlas { .. } => "atlas",
+            Command::AtlasMerge { .. } => "atlas-merge",
+            Command::Diff { .. } => "diff",
+            Command::Book { .. } => "book",
         }
     }
 }
@@ -420,10 +447,10 @@ fn run(cli: Cli) -> Result<(), Failure> {
             }
             // a window cut short is printed (it holds what happened up to the stop) but
             // is not the result asked for
-            if report.outcome != "completed" {
-                return Err(error::Error::Unsupported(format!(
+            if report.sim.ending != impacting_cantilever::analysis::simulate::Ending::Completed {
+                return Err(error::Error::Chatter(format!(
                     "the window is incomplete: the run {}",
-                    report.outcome
+                    report.sim.ending
                 ))
                 .into());
             }
@@ -614,6 +641,69 @@ fn book_command(_: &std::path::Path, _: Option<&[String]>) -> Result<(), Failure
 
 #[cfg(test)]
 mod tests {
+    /// The book's table of which options each command takes (*Output formats*) is the
+    /// command line's: every command, every option, nothing more.
+    #[test]
+    fn the_books_options_table_is_the_command_lines() {
+        use clap::{Args, CommandFactory};
+        let longs = |c: &clap::Command| -> Vec<String> {
+            let mut v: Vec<String> = c
+                .get_arguments()
+                .filter_map(|a| a.get_long().map(|l| format!("--{l}")))
+                .filter(|l| l != "--help")
+                .collect();
+            v.sort();
+            v
+        };
+        let model = longs(&super::model_args::ModelArgs::augment_args(
+            clap::Command::new("m"),
+        ));
+        let start = longs(&super::model_args::StartArgs::augment_args(
+            clap::Command::new("s"),
+        ));
+        let page = std::fs::read_to_string(
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("book/src/output-formats.md"),
+        )
+        .unwrap();
+        let section = page
+            .split("## Which options each command takes")
+            .nth(1)
+            .expect("the section");
+        let cli = super::Cli::command();
+        let mut seen = Vec::new();
+        let first_table = section.split("\n\n").nth(2).expect("the table");
+        for line in first_table.lines().filter(|l| l.starts_with("| `")) {
+            let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+            let name = cells[1].trim_matches('`');
+            let cmd = cli.find_subcommand(name).expect("a command");
+            let mut listed: Vec<String> = cells[4]
+                .split(", ")
+                .map(|o| o.trim_matches('`').to_string())
+                .filter(|o| o.starts_with("--"))
+                .collect();
+            if cells[2] == "yes" {
+                listed.extend(model.iter().cloned());
+            }
+            if cells[3] == "yes" {
+                listed.extend(start.iter().cloned());
+            }
+            listed.sort();
+            assert_eq!(listed, longs(cmd), "the book's row for `{name}`");
+            seen.push(name.to_string());
+        }
+        let mut all: Vec<String> = cli
+            .get_subcommands()
+            .map(|c| c.get_name().to_string())
+            .collect();
+        all.sort();
+        seen.sort();
+        assert_eq!(seen, all, "a row per command");
+        // and the list of the model and start options under the table
+        for o in model.iter().chain(&start) {
+            assert!(section.contains(&format!("`{o}`")), "{o} in the list");
+        }
+    }
+
     /// clap checks its argument graph (unique group names, flag clashes) only in debug
     /// builds; this runs those checks for every subcommand. It is a no-op in release, so
     /// the test command runs it in the debug profile too.

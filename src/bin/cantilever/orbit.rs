@@ -1,26 +1,77 @@
-//! `cantilever orbit`: one periodic orbit of the compliant model, or of the rigid-impact
-//! model with its law, by Newton shooting, with its Floquet multipliers
-//! ([`impacting_cantilever::analysis::shooting`]).
+//! `cantilever orbit`: flags → the library's [`find_orbit`] (the one orbit path, the same
+//! call the Python package makes) → JSON or text.
 
-use crate::simulate::{self, Law, ModelKind};
-use impacting_cantilever::analysis::orbit::detect_period_by;
-use impacting_cantilever::analysis::shooting::{self, PeriodicOrbit};
-use impacting_cantilever::engine::map::PeriodMap;
-use impacting_cantilever::engine::rigid::RigidImpact;
-use impacting_cantilever::engine::sim::Simulator;
-use impacting_cantilever::error::{Error, ParameterError};
-use nalgebra::DVector;
+use crate::model_args::{ModelArgs, StartArgs};
+use impacting_cantilever::analysis::find_orbit::{find_orbit, FoundOrbit, OrbitOptions};
+use impacting_cantilever::analysis::shooting::PeriodicOrbit;
+use impacting_cantilever::engine::built::BuiltModel;
+use impacting_cantilever::error::Error;
+use impacting_cantilever::model::spec::{ModelSpec, Named, Start, Stop, Structure};
 
-/// The command's inputs: the model and start of `simulate`, and the orbit's period.
+/// The orbit options every front end starts from.
+const DEFAULTS: OrbitOptions = OrbitOptions::DEFAULTS;
+
+/// The command's inputs: the model and start of `simulate`, how the orbit is found, and
+/// whether its r_E is wanted.
 #[derive(Debug, Clone, clap::Args)]
 pub struct OrbitArgs {
     #[command(flatten)]
-    pub model: simulate::SimulateArgs,
-    /// The orbit's period m in forcing periods (1 to 64). Without it, m is read from the
-    /// stroboscopic samples of the recorded window (the smallest m whose samples repeat to
-    /// 1e-3), so the start needs enough transient to come near the orbit.
+    pub model: ModelArgs,
+    #[command(flatten)]
+    pub start: StartArgs,
+    #[command(flatten)]
+    pub search: SearchArgs,
+    /// Also r_E (eq 39), the energetic coefficient of restitution over one period of the
+    /// orbit (compliant model only).
+    #[arg(long)]
+    pub energetic_restitution: bool,
+}
+
+/// How the start orbit is found (`orbit` and `continue`).
+#[derive(Debug, Clone, clap::Args)]
+pub struct SearchArgs {
+    /// Transient: forcing periods run from the start before the orbit is read (0 to 1e8).
+    #[arg(long, default_value_t = DEFAULTS.transient)]
+    pub periods: u64,
+    /// The window: periods whose stroboscopic samples give the period m (2 to 10 000; m is
+    /// read up to min(64, record − 1)).
+    #[arg(long, default_value_t = DEFAULTS.window)]
+    pub record: u64,
+    /// The orbit's period m in forcing periods (1 to 64), if known; read from the window
+    /// otherwise (the smallest m whose samples repeat to --period-tolerance).
     #[arg(long)]
     pub period: Option<u64>,
+    /// How near the window's samples must repeat for m to be taken (relative, in (0, 1));
+    /// Newton then converges the orbit to 1e-12.
+    #[arg(long, allow_hyphen_values = true, default_value_t = DEFAULTS.period_tolerance)]
+    pub period_tolerance: f64,
+    /// Newton steps allowed (1 to 1000).
+    #[arg(long, default_value_t = DEFAULTS.max_iterations)]
+    pub max_iterations: usize,
+}
+
+impl SearchArgs {
+    /// The library's options (with r_E or not).
+    pub fn options(&self, restitution: bool) -> OrbitOptions {
+        OrbitOptions {
+            transient: self.periods,
+            window: self.record,
+            period: self.period,
+            period_tolerance: self.period_tolerance,
+            max_iterations: self.max_iterations,
+            restitution,
+        }
+    }
+}
+
+/// The specification and start the flags give, and where the start came from.
+pub fn spec_and_start(
+    model: &ModelArgs,
+    start: &StartArgs,
+) -> Result<(ModelSpec, Start, Option<String>), Error> {
+    let spec = model.spec()?;
+    let (start, file) = start.start(spec.modes())?;
+    Ok((spec, start, file))
 }
 
 /// The orbit and how it was found.
@@ -29,111 +80,84 @@ pub struct Report {
     /// The orbit.
     #[serde(flatten)]
     pub orbit: PeriodicOrbit,
+    /// r_E (eq 39) over one period, when asked for (null if the balance has no real root).
+    pub energetic_restitution: Option<f64>,
     /// Where the Newton iteration started.
     pub start: String,
     /// The model: compliant or rigid.
-    pub model: ModelKind,
+    pub model: &'static str,
     /// The rigid model's law (null for the compliant model).
-    pub law: Option<Law>,
+    pub law: Option<&'static str>,
     /// The rigid model's restitution coefficient (null for the compliant model).
     pub restitution: Option<f64>,
-    /// The parameters, as given.
+    /// N.
     pub modes: usize,
-    /// k/k₁.
+    /// k/k₁ (null for the rigid model).
     #[serde(rename = "stop_stiffness_over_k1")]
-    pub k_over_k1: f64,
+    pub k_over_k1: Option<f64>,
     /// ω/(β₁⁻)².
     #[serde(rename = "omega_over_beta1_squared")]
     pub omega_over_w1: f64,
     /// ζ₁.
     pub zeta1: f64,
-    /// d₀.
+    /// d₀ (in the unit of `gap_unit`).
     pub gap: f64,
-    /// Wall time of the transient and the shooting, from the model's matrices (the flows' set-up
-    /// included) to the orbit and its multipliers (s).
+    /// Wall time of the transient and the shooting, from the model's matrices (the flows'
+    /// set-up included) to the orbit and its multipliers (s).
     pub wall_seconds: f64,
 }
 
-/// Finds the orbit, of the compliant model or of the rigid-impact model with its law.
+/// Finds the orbit.
 pub fn run(args: &OrbitArgs) -> Result<Report, Error> {
-    let a = &args.model;
-    if let Some(m) = args.period {
-        if !(1..=64).contains(&m) {
-            return Err(ParameterError::new("--period", m, "an integer from 1 to 64").into());
-        }
-    }
-    let setup = simulate::setup(a)?;
+    let (spec, start, file) = spec_and_start(&args.model, &args.start)?;
     let started = std::time::Instant::now();
-    let sim = Simulator::new(setup.model)?;
-    let orbit = match (a.model, setup.law) {
-        (ModelKind::Rigid, Some(law)) => find(&RigidImpact::new(sim, law)?, &setup.x0, args)?,
-        _ => find(&sim, &setup.x0, args)?,
-    };
+    let model = BuiltModel::build(&spec)?;
+    let (x0, from) = model.start(&start)?;
+    let options = args.search.options(args.energetic_restitution);
+    let found: FoundOrbit = find_orbit(&model, &x0, &options)?;
     let wall_seconds = started.elapsed().as_secs_f64();
+    let (law, restitution, k) = match spec.stop {
+        Stop::Rigid { law, restitution } => (Some(law.name()), Some(restitution), None),
+        Stop::Compliant { stop_stiffness } => (None, None, Some(stop_stiffness)),
+    };
+    let (omega, zeta1, gap) = match &spec.structure {
+        Structure::Cantilever(c) => (c.omega, c.zeta1, c.gap),
+        Structure::Oscillator(o) => (o.omega, 0.0, o.gap),
+    };
     Ok(Report {
-        orbit,
-        start: format!("{} after {} transient periods", setup.start, a.periods),
-        model: a.model,
-        law: (a.model == ModelKind::Rigid).then_some(a.law),
-        restitution: (a.model == ModelKind::Rigid).then_some(a.restitution),
-        modes: a.modes,
-        k_over_k1: a.stop_stiffness,
-        omega_over_w1: a.omega,
-        zeta1: a.zeta1,
-        gap: a.gap,
+        orbit: found.orbit,
+        energetic_restitution: found.energetic_restitution,
+        start: format!(
+            "{} after {} transient periods",
+            file.unwrap_or(from),
+            args.search.periods
+        ),
+        model: spec.kind(),
+        law,
+        restitution,
+        modes: spec.modes(),
+        k_over_k1: k,
+        omega_over_w1: omega,
+        zeta1,
+        gap,
         wall_seconds,
     })
-}
-
-/// The transient, the period (given, or read from the window: the smallest whose strobe
-/// samples nearly repeat) and the orbit by shooting, for any model with a Jacobian.
-fn find<M: PeriodMap>(
-    model: &M,
-    x0: &DVector<f64>,
-    args: &OrbitArgs,
-) -> Result<PeriodicOrbit, Error> {
-    let a = &args.model;
-    let x = model.advance(x0, 0, a.periods, false)?.state;
-    let (x, m) = match args.period {
-        Some(m) => (x, m),
-        None => {
-            let window = a.record.max(2);
-            let w = model.advance(&x, a.periods as i64, window, true)?;
-            let (m, residual) =
-                detect_period_by(&w.strobe, 1e-3, 64.min(window as usize - 1), &|p, q| {
-                    model.residual(p, q)
-                });
-            let m = m.ok_or_else(|| {
-                Error::Unsupported(format!(
-                    "no period m ≤ 64 in the recorded window (best relative residual {residual:.1e}): give --period, or more --periods of transient"
-                ))
-            })?;
-            (w.state, m)
-        }
-    };
-    shooting::shoot(model, &x, m)
 }
 
 /// Plain-text summary.
 pub fn to_text(r: &Report) -> String {
     let o = &r.orbit;
-    let model = match (r.law, r.restitution) {
-        (Some(law), Some(e)) => {
-            use clap::ValueEnum;
-            let name = law
-                .to_possible_value()
-                .map(|v| v.get_name().to_string())
-                .unwrap_or_default();
-            format!("rigid-impact, {name} law, r = {e}")
-        }
+    let model = match (r.law, r.restitution, r.k_over_k1) {
+        (Some(law), Some(e), _) => format!("rigid-impact, {law} law, r = {e}"),
         // as typed: the shortest form, in e-notation beyond moderate sizes
-        _ if r.k_over_k1 != 0.0 && !(1e-3..1e7).contains(&r.k_over_k1) => {
-            format!("compliant, k = {:e}k₁", r.k_over_k1)
+        (_, _, Some(k)) if k != 0.0 && !(1e-3..1e7).contains(&k) => {
+            format!("compliant, k = {k:e}k₁")
         }
-        _ => format!("compliant, k = {}k₁", r.k_over_k1),
+        (_, _, k) => format!("compliant, k = {}k₁", k.unwrap_or(0.0)),
     };
     let mut s = format!(
-        "({}, {}) orbit, N = {}, {model}, ω = {}(β₁⁻)²: {} (spectral radius {:.6}), residual {:.1e} after {} Newton steps\nmultipliers (largest first):\n",
+        "({}, {}) orbit, N = {}, {model}, ω = {}(β₁⁻)²: {} (spectral radius {:.6}), residual \
+         {:.1e} after {} Newton steps\n",
         o.period_m,
         o.impacts_n,
         r.modes,
@@ -143,7 +167,21 @@ pub fn to_text(r: &Report) -> String {
         o.residual,
         o.iterations
     );
-    for z in o.multipliers.iter().take(6) {
+    if let Some(e) = r.energetic_restitution {
+        s.push_str(&format!(
+            "energetic coefficient of restitution r_E = {e:.10}\n"
+        ));
+    }
+    let shown = o.multipliers.len().min(6);
+    s.push_str(&if shown < o.multipliers.len() {
+        format!(
+            "multipliers (the {shown} largest of {}; all in --json):\n",
+            o.multipliers.len()
+        )
+    } else {
+        "multipliers (largest first):\n".to_string()
+    });
+    for z in o.multipliers.iter().take(shown) {
         s.push_str(&format!(
             "  {:+.10} {:+.10}i  |μ| = {:.10}\n",
             z[0],

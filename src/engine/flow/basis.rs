@@ -76,6 +76,9 @@ pub fn free(model: &GalerkinModel) -> ModalBasis {
 
 /// Any region: a dense eigendecomposition with nearly defective pairs as blocks (see the
 /// module doc).
+///
+/// # Errors
+/// [`FlowError::Eigen`] when the dense eigensolver does not converge.
 pub fn general(a: &DMatrix<f64>) -> Result<ModalBasis, FlowError> {
     let n2 = a.nrows();
     let eig = eigen_balanced_parts(a)?;
@@ -138,6 +141,9 @@ pub fn general(a: &DMatrix<f64>) -> Result<ModalBasis, FlowError> {
 /// resting on the stop for a few hundredths — gained ~1e-6 of the stored energy against
 /// a Runge–Kutta integration of the same ODE from the same state (which closed its own
 /// budget to 1e-18), and the run's energy imbalance was 1.6e-6; refined, 4e-12.
+///
+/// # Errors
+/// [`FlowError::Eigen`] when the dense eigensolver does not converge.
 pub fn contact(model: &GalerkinModel) -> Result<ModalBasis, FlowError> {
     let mut basis = general(&model.state_matrix(Region::Contact))?;
     let quarter_k = model.params().stop_stiffness / 4.0;
@@ -230,6 +236,9 @@ fn secular_root(
 
 /// Indices of eigenvalues with Im ≥ 0, each marked as a conjugate pair or a real one
 /// (an error if a complex eigenvalue has no partner: the eigensolver failed).
+///
+/// # Errors
+/// [`FlowError::Eigen`] when a complex eigenvalue has no unused partner left.
 pub fn conjugate_halves(lambda: &[Complex64]) -> Result<Vec<(usize, bool)>, FlowError> {
     let mut used = vec![false; lambda.len()];
     let mut half = Vec::new();
@@ -258,6 +267,9 @@ pub fn conjugate_halves(lambda: &[Complex64]) -> Result<Vec<(usize, bool)>, Flow
 }
 
 /// x with Mx = b by faer's blocked LU with partial pivoting.
+///
+/// # Errors
+/// [`FlowError::Eigen`] when the solution is not finite (M singular to working precision).
 pub fn solve(
     m: &DMatrix<Complex64>,
     b: &DVector<Complex64>,
@@ -277,6 +289,9 @@ pub fn solve(
 
 /// V⁻¹ by faer's blocked LU with partial pivoting (nalgebra's unblocked inverse takes
 /// seconds at N = 400).
+///
+/// # Errors
+/// [`FlowError::Eigen`] when the inverse is not finite (V singular to working precision).
 pub fn invert(v: &DMatrix<Complex64>) -> Result<DMatrix<Complex64>, FlowError> {
     use faer::linalg::solvers::DenseSolveCore;
     let n = v.nrows();
@@ -383,6 +398,9 @@ fn eigen_balanced_parts(a: &DMatrix<f64>) -> Result<BalancedEigen, FlowError> {
 /// nalgebra's real Schur form (Francis double shift) with an iteration cap, which for the
 /// small dense matrices here (2N ≤ 80) takes a fifth of faer's time (10 against 48 µs at
 /// 2N = 20, the values equal to ~1e-15); faer's decomposition if it does not converge.
+///
+/// # Errors
+/// [`FlowError::Eigen`] when neither the Schur iteration nor faer's fallback converges.
 pub fn eigenvalues_balanced(a: &DMatrix<f64>) -> Result<Vec<Complex64>, FlowError> {
     let n = a.nrows();
     let d = balance(a);
@@ -398,6 +416,9 @@ pub fn eigenvalues_balanced(a: &DMatrix<f64>) -> Result<Vec<Complex64>, FlowErro
 }
 
 /// Eigenvalues and right eigenvectors of a real matrix, computed on its balanced form.
+///
+/// # Errors
+/// [`FlowError::Eigen`] when the eigensolver does not converge.
 pub fn eigen_balanced(a: &DMatrix<f64>) -> Result<(Vec<Complex64>, DMatrix<Complex64>), FlowError> {
     let e = eigen_balanced_parts(a)?;
     Ok((e.lambda, e.v))

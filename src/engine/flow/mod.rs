@@ -181,6 +181,12 @@ pub struct RegionFlow {
 
 impl RegionFlow {
     /// Builds the flow of `region` for `model`.
+    ///
+    /// # Errors
+    /// [`FlowError::Unstable`] for an eigenvalue with positive real part;
+    /// [`FlowError::IllConditioned`] when ‖V‖₁‖V⁻¹‖₁ exceeds [`MAX_EIGENVECTOR_CONDITION`];
+    /// [`FlowError::Eigen`] when the eigensolver fails or V, the forced or the static response
+    /// cannot be solved for.
     pub fn new(model: &GalerkinModel, region: Region) -> Result<Self, FlowError> {
         let n = model.modes();
         let a = model.state_matrix(region);

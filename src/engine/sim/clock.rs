@@ -55,6 +55,33 @@ impl Clock {
         }
     }
 
+    /// The points of the dense grid t = c·T + j·T/`per_period` (j = 0 … per_period − 1)
+    /// that fall in [self, self + span): each as (s, t), its offset s from this reading
+    /// and its time t. The one grid every dense output uses, whatever spans it is asked
+    /// for (segments of a run, flights of the rigid model, one or many periods).
+    pub fn grid(&self, span: f64, per_period: usize) -> Vec<(f64, f64)> {
+        let mut out = Vec::new();
+        if per_period == 0 || span.is_nan() || span <= 0.0 {
+            return out;
+        }
+        let dt = self.period / per_period as f64;
+        // the first grid point at or after the offset; j = per_period is the next cycle's
+        // j = 0 (its rounded j·dt may fall a hair before T)
+        let (mut cycle, mut j) = (0i64, (self.offset / dt).ceil() as i64);
+        loop {
+            if j >= per_period as i64 {
+                (cycle, j) = (cycle + 1, 0);
+            }
+            let s = cycle as f64 * self.period + j as f64 * dt - self.offset;
+            if s >= span {
+                return out;
+            }
+            let t = (self.cycles + cycle) as f64 * self.period + j as f64 * dt;
+            out.push((s, t));
+            j += 1;
+        }
+    }
+
     /// Whether this reading is strictly before `other` (same period assumed).
     pub fn before(&self, other: &Clock) -> bool {
         self.cycles < other.cycles || (self.cycles == other.cycles && self.offset < other.offset)

@@ -31,8 +31,8 @@ pub use clock::Clock;
 pub use energy::EnergyBudget;
 pub use monodromy::Monodromy;
 pub use observe::{
-    Dense, Energy, Event, EventView, Events, Observer, Sample, SegmentView, Strobe, TipMax,
-    TipMaximum,
+    Dense, DenseStates, Energy, Event, EventView, Events, Observer, Sample, SegmentView,
+    StateSample, Strobe, TipMax, TipMaximum,
 };
 
 use crate::engine::flow::{FlowError, RegionFlow, TermKind};
@@ -45,6 +45,10 @@ use std::sync::OnceLock;
 
 /// A state x = [η; η̇] must have 2N finite entries: a wrong length would fail deep inside
 /// the linear algebra, and a NaN would run to a NaN "result".
+///
+/// # Errors
+/// [`Error::Parameter`] for a length other than `dim`, or an entry that is not finite or
+/// exceeds 1e100 in magnitude.
 pub fn check_state(x: &DVector<f64>, dim: usize, model: &str) -> Result<(), Error> {
     if x.len() != dim {
         return Err(crate::error::ParameterError::new(
@@ -244,6 +248,10 @@ impl<'a> Segment<'a> {
 
 impl Simulator {
     /// Builds both region flows.
+    ///
+    /// # Errors
+    /// The [`FlowError`] of either region's [`RegionFlow::new`] (an eigensolver failure, an
+    /// unstable or ill-conditioned basis).
     pub fn new(model: GalerkinModel) -> Result<Self, FlowError> {
         let free = RegionFlow::new(&model, Region::Free)?;
         let contact = RegionFlow::new(&model, Region::Contact)?;
@@ -323,8 +331,12 @@ impl Simulator {
     }
 
     /// Stored energy: ½|η̇|² + ½ηᵀK⁻η + (k/8)(φ(1)ᵀη − d₀)₊².
-    pub fn stored_energy(&self, x: &DVector<f64>) -> f64 {
-        energy::stored_energy(&self.model, x)
+    ///
+    /// # Errors
+    /// [`Error::Parameter`] for a state of the wrong length or not finite.
+    pub fn stored_energy(&self, x: &DVector<f64>) -> Result<f64, Error> {
+        check_state(x, 2 * self.model.modes(), "the compliant model")?;
+        Ok(energy::stored_energy(&self.model, x))
     }
 
     /// Free flight (the − region's exact flow) from `x` at `clock` for at most `horizon`:
@@ -434,6 +446,9 @@ impl Simulator {
     }
 
     /// Runs `periods` forcing periods from state x at the start of cycle 0 (t = 0).
+    ///
+    /// # Errors
+    /// As [`Self::run_until`].
     pub fn run(
         &self,
         x0: &DVector<f64>,
@@ -444,6 +459,9 @@ impl Simulator {
     }
 
     /// Runs from `start` until `periods` whole periods later (ending at a period boundary).
+    ///
+    /// # Errors
+    /// As [`Self::run_until`].
     pub fn run_from(
         &self,
         x0: &DVector<f64>,
@@ -461,6 +479,11 @@ impl Simulator {
     /// Invariant, checked at every switch: an entry into contact moves into the stop
     /// (ḋ ≥ 0) and an exit away from it (ḋ ≤ 0), beyond the grazing band. A run that breaks
     /// it stops with [`Error::Invariant`] rather than return a wrong trajectory.
+    ///
+    /// # Errors
+    /// [`Error::Parameter`] for a bad `x0`; [`Error::Chatter`] beyond
+    /// [`MAX_CONTACTS_PER_PERIOD`] entries in a period; [`Error::Invariant`] as above;
+    /// [`Error::Interrupted`] when the observer asks the run to stop.
     pub fn run_until(
         &self,
         x0: &DVector<f64>,
@@ -473,11 +496,11 @@ impl Simulator {
         let omega = self.omega();
         let gap = self.model.params().gap;
         let h_min = self.h_min();
-        let boundaries = observer.needs_period_boundaries();
+        let boundaries = observer.wants_period_boundaries();
         let mut stats = Stats::default();
         let mut clock = start;
         let mut x = x0.clone();
-        let mut region = self.initial_region(&x, &clock);
+        let mut region = self.model.start_region(&x, clock.offset);
         // entries into contact since the start of the current forcing period
         let (mut counted_cycle, mut contacts) = (clock.cycles, 0u64);
         observer.begin(self, &clock, &x);
@@ -485,18 +508,15 @@ impl Simulator {
             let flow = self.flow(region);
             let seg = Segment::new(flow, &x, omega * clock.offset, gap, self.model.tip());
             stats.segments += 1;
-            // Segments end at a period boundary when samples are taken there, and after at
-            // most MAX_SEGMENT_PERIODS periods otherwise, so the forcing phase argument
-            // ω·(offset + s) stays below 2π·16 and keeps ~14 digits over any run length.
+            // Segments end at switches, at the run's end, and after at most
+            // MAX_SEGMENT_PERIODS periods, so the forcing phase argument ω·(offset + s)
+            // stays below 2π·16 and keeps ~14 digits over any run length. Never where an
+            // observer would like them to: observing must not change the run.
             let remaining = end.cycles - clock.cycles;
             let (horizon, to_boundary) = if remaining == 0 {
                 (end.offset - clock.offset, false)
             } else {
-                let ahead = if boundaries {
-                    1
-                } else {
-                    remaining.min(MAX_SEGMENT_PERIODS)
-                };
+                let ahead = remaining.min(MAX_SEGMENT_PERIODS);
                 (ahead as f64 * period - clock.offset, true)
             };
             let found = seg.next_switch(horizon, h_min, self.settings.root_tolerance, &mut stats);
@@ -516,7 +536,27 @@ impl Simulator {
                 end: s_end,
                 region,
             });
+            if boundaries {
+                // the period boundaries this segment passes (one it ends on without a switch
+                // is reported below, with the state it ends in; one a switch falls on is
+                // reported here, before the switch)
+                let mut b = 1;
+                loop {
+                    let s_b = b as f64 * period - clock.offset;
+                    if s_b >= horizon || s_b > s_end || (s_b == s_end && crossing.is_none()) {
+                        break;
+                    }
+                    observer.period_boundary(
+                        &Clock::at_cycle(period, clock.cycles + b),
+                        &seg.state(s_b),
+                    );
+                    b += 1;
+                }
+            }
             x = seg.state(s_end);
+            if observer.interrupted() {
+                return Err(Error::Interrupted);
+            }
             match crossing {
                 Some(s) => {
                     clock.advance(s);
@@ -606,7 +646,7 @@ impl Simulator {
             .iter()
             .map(|l| l.im.abs())
             .fold(0.0, f64::max);
-        Error::Unsupported(format!(
+        Error::Chatter(format!(
             "more than {MAX_CONTACTS_PER_PERIOD} entries into contact in the forcing period \
              ending near t = {:.6e}: the tip chatters on the stop at its contact frequency \
              ({:.1e} oscillations per forcing period), and each bounce is an event to locate. \
@@ -618,7 +658,14 @@ impl Simulator {
     }
 
     /// The region a state starts in ([`GalerkinModel::starting_region`]).
-    pub fn initial_region(&self, x: &DVector<f64>, clock: &Clock) -> Region {
+    ///
+    /// # Errors
+    /// [`crate::error::ParameterError`] for a state whose length is not 2N.
+    pub fn initial_region(
+        &self,
+        x: &DVector<f64>,
+        clock: &Clock,
+    ) -> Result<Region, crate::error::ParameterError> {
         self.model.starting_region(x, clock.offset)
     }
 }

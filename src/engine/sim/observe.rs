@@ -3,6 +3,12 @@
 //! boundary; an observer keeps what it needs. A scene adds an observable by writing an
 //! observer, not by editing the driver. Nothing is computed that no observer asks for.
 //!
+//! **Observing never perturbs.** Where a run's segments end depends only on the run (its
+//! start, its end and its events), never on its observers: a period boundary inside a
+//! segment is reported with the exact state there ([`SegmentView::state`]), and samples
+//! on a grid are taken inside segments. So events, strobe and final state are the same
+//! bits whatever is observed (tested over observers, models and laws).
+//!
 //! Several observers run together as a tuple: `sim.run(&x0, 100, &mut (&mut events, &mut
 //! energy))`; `&mut ()` observes nothing.
 
@@ -83,9 +89,15 @@ pub struct EventView<'a> {
 
 /// What a run reports to. Every method has an empty default.
 pub trait Observer {
-    /// Whether segments must end at every period boundary (for samples taken on the
-    /// stroboscopic map or on a grid per period). Otherwise they may span up to 16 periods.
-    fn needs_period_boundaries(&self) -> bool {
+    /// Whether [`Observer::period_boundary`] is wanted (the state at each period boundary
+    /// inside a segment then costs one evaluation of the exact flow). It does not change
+    /// where segments end.
+    fn wants_period_boundaries(&self) -> bool {
+        false
+    }
+    /// Whether the run should stop now (the caller's Ctrl-C, say): polled after every
+    /// segment; the run then ends with [`crate::error::Error::Interrupted`].
+    fn interrupted(&self) -> bool {
         false
     }
     /// The run starts from state x at `clock`.
@@ -105,8 +117,11 @@ impl Observer for () {}
 /// An observer that may be switched off: `None` observes nothing and costs nothing (the
 /// energy budget of `simulate --no-energy`).
 impl<O: Observer> Observer for Option<O> {
-    fn needs_period_boundaries(&self) -> bool {
-        self.as_ref().is_some_and(|o| o.needs_period_boundaries())
+    fn wants_period_boundaries(&self) -> bool {
+        self.as_ref().is_some_and(|o| o.wants_period_boundaries())
+    }
+    fn interrupted(&self) -> bool {
+        self.as_ref().is_some_and(|o| o.interrupted())
     }
     fn begin(&mut self, sim: &Simulator, clock: &Clock, x: &DVector<f64>) {
         if let Some(o) = self {
@@ -136,8 +151,11 @@ impl<O: Observer> Observer for Option<O> {
 }
 
 impl<O: Observer + ?Sized> Observer for &mut O {
-    fn needs_period_boundaries(&self) -> bool {
-        (**self).needs_period_boundaries()
+    fn wants_period_boundaries(&self) -> bool {
+        (**self).wants_period_boundaries()
+    }
+    fn interrupted(&self) -> bool {
+        (**self).interrupted()
     }
     fn begin(&mut self, sim: &Simulator, clock: &Clock, x: &DVector<f64>) {
         (**self).begin(sim, clock, x)
@@ -159,10 +177,15 @@ impl<O: Observer + ?Sized> Observer for &mut O {
 macro_rules! tuple_observer {
     ($($name:ident),+) => {
         impl<$($name: Observer),+> Observer for ($($name,)+) {
-            fn needs_period_boundaries(&self) -> bool {
+            fn wants_period_boundaries(&self) -> bool {
                 #[allow(non_snake_case)]
                 let ($($name,)+) = self;
-                false $(|| $name.needs_period_boundaries())+
+                false $(|| $name.wants_period_boundaries())+
+            }
+            fn interrupted(&self) -> bool {
+                #[allow(non_snake_case)]
+                let ($($name,)+) = self;
+                false $(|| $name.interrupted())+
             }
             fn begin(&mut self, sim: &Simulator, clock: &Clock, x: &DVector<f64>) {
                 #[allow(non_snake_case)]
@@ -287,7 +310,7 @@ impl Strobe {
 }
 
 impl Observer for Strobe {
-    fn needs_period_boundaries(&self) -> bool {
+    fn wants_period_boundaries(&self) -> bool {
         true
     }
     fn begin(&mut self, _: &Simulator, clock: &Clock, x: &DVector<f64>) {
@@ -321,27 +344,45 @@ impl Dense {
 }
 
 impl Observer for Dense {
-    fn needs_period_boundaries(&self) -> bool {
-        self.per_period > 0
-    }
     fn segment(&mut self, seg: &SegmentView) {
-        if self.per_period == 0 {
-            return;
-        }
-        let dt = seg.start.period / self.per_period as f64;
-        // samples on the global grid t = j·dt that fall in [offset, offset + S)
-        let mut j = (seg.start.offset / dt).ceil() as i64;
-        // j < per_period: the grid point j = per_period is the next cycle's j = 0 (its
-        // rounded j·dt may fall a hair before T)
-        while j < self.per_period as i64 {
-            let s = j as f64 * dt - seg.start.offset;
-            if s >= seg.end {
-                break;
-            }
+        for (s, t) in seg.start.grid(seg.end, self.per_period) {
             let (d, v) = seg.tip(s);
+            self.samples.push((t, d, v, seg.region == Region::Contact));
+        }
+    }
+}
+
+/// One dense sample of the whole state: t, in contact, tip displacement and velocity, and
+/// [η; η̇].
+pub type StateSample = (f64, bool, f64, f64, DVector<f64>);
+
+/// Samples of the whole state [η; η̇] (and the tip) on the grid t = cycles·T +
+/// j·T/`per_period`: the dense output of `simulate`.
+#[derive(Debug, Clone, Default)]
+pub struct DenseStates {
+    /// Samples per forcing period.
+    pub per_period: usize,
+    /// The samples, in order.
+    pub samples: Vec<StateSample>,
+}
+
+impl DenseStates {
+    /// `per_period` samples per period.
+    pub fn new(per_period: usize) -> Self {
+        Self {
+            per_period,
+            samples: Vec::new(),
+        }
+    }
+}
+
+impl Observer for DenseStates {
+    fn segment(&mut self, seg: &SegmentView) {
+        for (s, t) in seg.start.grid(seg.end, self.per_period) {
+            let (d, v) = seg.tip(s);
+            let x = seg.state(s);
             self.samples
-                .push((seg.start.time() + s, d, v, seg.region == Region::Contact));
-            j += 1;
+                .push((t, seg.region == Region::Contact, d, v, x));
         }
     }
 }
@@ -362,6 +403,7 @@ impl Observer for Energy {
         let (w, d) = segment_energy(seg.flow, seg.y, seg.phase0, tables, seg.end);
         self.budget.work += w;
         self.budget.dissipated += d;
+        self.budget.gross += w.abs() + d.abs();
     }
     fn end(&mut self, sim: &Simulator, _: &Clock, x: &DVector<f64>, _: &Stats) {
         self.budget.last = stored_energy(sim.model(), x);

@@ -131,6 +131,11 @@ pub const MAX_MODES: usize = 200;
 
 impl TwoBasisModel {
     /// Builds the model for N = `params.modes` and a finite stop stiffness k > 0.
+    ///
+    /// # Errors
+    /// [`Error::Parameter`] for N out of 1…[`MAX_MODES`], k not finite and > 0, or the checks of
+    /// [`GalerkinModel::new`]; [`Error::Flow`] when a flow cannot be built; [`Error::Unsupported`]
+    /// when an eigenvalue of the bending stiffness is not bracketed.
     pub fn new(params: GalerkinParams) -> Result<Self, Error> {
         let n = error::count_in_range("modes N", params.modes, MAX_MODES)?;
         let k = error::finite_positive("stop stiffness k", params.stop_stiffness)?;
@@ -258,7 +263,7 @@ impl TwoBasisModel {
         let (d, _) = self.tip(s);
         let kinetic = 0.5 * s.x.rows(n, n).norm_squared();
         match s.region {
-            Region::Free => self.free.stored_energy(&s.x),
+            Region::Free => crate::engine::sim::energy::stored_energy(self.free.model(), &s.x),
             Region::Contact => {
                 // qᵀK_b q = Σ μ_i q_i² − (k/4)(ψ(1)ᵀq)², without forming K_b
                 let q = s.x.rows(0, n);
@@ -276,7 +281,7 @@ impl TwoBasisModel {
             region: Region::Free,
             x: x.clone(),
         };
-        match self.free.model().starting_region(x, t) {
+        match self.free.model().start_region(x, t) {
             Region::Free => (free, None),
             Region::Contact => {
                 let v = self.tip(&free).1;
@@ -327,6 +332,9 @@ impl TwoBasisModel {
     /// Runs from `state` at `start` until the clock reads `end`, switching bases at every
     /// certified crossing of the surface. Segments end at each period boundary, so the
     /// forcing phase stays exact over long runs.
+    ///
+    /// # Errors
+    /// As [`Self::run_switches`].
     pub fn run_until(
         &self,
         state: TwoBasisState,
@@ -337,6 +345,10 @@ impl TwoBasisModel {
     }
 
     /// [`Self::run_until`], stopping right after the `count`-th switch if that comes first.
+    ///
+    /// # Errors
+    /// [`Error::Parameter`] for a state of the wrong length or not finite; [`Error::Invariant`]
+    /// when a projection leaves the state beyond the surface in both bases.
     pub fn run_switches(
         &self,
         state: TwoBasisState,

@@ -39,6 +39,9 @@ impl Preprocessor for MathPreprocessor {
 }
 
 /// One LaTeX fragment to MathML; parse errors are errors (the book must not ship them).
+///
+/// # Errors
+/// When `tex` does not parse as LaTeX or its MathML cannot be written.
 pub fn latex_to_mathml(tex: &str, display: bool) -> Result<String> {
     let storage = Storage::new();
     let events: Vec<_> = Parser::new(tex, &storage).collect();
@@ -81,6 +84,10 @@ pub fn latex_to_mathml(tex: &str, display: bool) -> Result<String> {
 /// Replaces math delimiters in markdown, leaving fenced code and inline code alone.
 /// `\$` is a literal dollar sign. Math may continue across line breaks (prose is wrapped),
 /// but not across a blank line.
+///
+/// # Errors
+/// When math is left open at a blank line or at the end, or a fragment does not parse
+/// ([`latex_to_mathml`]).
 pub fn convert_math(markdown: &str) -> Result<String> {
     let mut out = String::with_capacity(markdown.len());
     let mut in_fence = false;

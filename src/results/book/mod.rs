@@ -26,7 +26,7 @@ use std::path::Path;
 use std::time::Instant;
 
 /// The examples of `examples/`, shown by the library chapter.
-const EXAMPLES: [(&str, &str); 3] = [
+const EXAMPLES: [(&str, &str); 4] = [
     (
         "find_orbit.rs",
         include_str!("../../../examples/find_orbit.rs"),
@@ -38,6 +38,10 @@ const EXAMPLES: [(&str, &str); 3] = [
     (
         "rigid_impact.rs",
         include_str!("../../../examples/rigid_impact.rs"),
+    ),
+    (
+        "use_cases.rs",
+        include_str!("../../../examples/use_cases.rs"),
     ),
 ];
 
@@ -63,6 +67,9 @@ pub struct BuildReport {
 /// Regenerates every scene (in parallel) at `resolution` and builds the book at `root`.
 /// The book uses [`Resolution::Book`]; the test suite builds it at [`Resolution::Test`]
 /// to check the pipeline without the full sweeps.
+///
+/// # Errors
+/// As [`build_only`].
 pub fn build(root: &Path, resolution: Resolution, progress: &dyn Progress) -> Result<BuildReport> {
     build_only(root, resolution, None, progress)
 }
@@ -71,6 +78,10 @@ pub fn build(root: &Path, resolution: Resolution, progress: &dyn Progress) -> Re
 /// scene's previous output in `generated/` is reused when it is current (same fingerprint
 /// and resolution, see [`reuse`]) and recomputed otherwise, so the book never mixes numbers
 /// of code that has since changed. Unknown names are an error.
+///
+/// # Errors
+/// No `book.toml` in `root`, an unknown scene in `only`, a scene that fails to compute or be
+/// written, a generated file that cannot be written, or mdBook failing to load or build.
 pub fn build_only(
     root: &Path,
     resolution: Resolution,

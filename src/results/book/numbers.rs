@@ -49,6 +49,10 @@ impl NumbersPreprocessor {
     }
 
     /// Replaces every reference in `text`.
+    ///
+    /// # Errors
+    /// For an unclosed reference, a reference not written `SCENE/KEY`, or an unknown scene, key
+    /// or scene time.
     pub fn expand(&self, text: &str) -> Result<String> {
         let mut out = String::with_capacity(text.len());
         let mut rest = text;

@@ -45,6 +45,10 @@ const MAX_BYTES: u64 = 16 << 20;
 
 /// The previous output of `spec` in `dir` if it is current for this build at
 /// `resolution`; otherwise why not, in a few words.
+///
+/// # Errors
+/// Why the previous output is not used: a file missing, `key_numbers.json` unreadable or
+/// invalid, another resolution, a changed or missing fingerprint, or a bad verdict or number.
 pub fn previous(
     spec: &dyn Entry,
     dir: &Path,

@@ -35,6 +35,9 @@ registry! {
 }
 
 /// Looks a scene up by name.
+///
+/// # Errors
+/// [`crate::error::ParameterError`] for a name that is not a scene's, listing the names.
 pub fn find(name: &str) -> Result<&'static dyn Entry, crate::error::ParameterError> {
     let all = all();
     all.iter()

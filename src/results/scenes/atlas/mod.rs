@@ -7,6 +7,7 @@
 //! they live.
 
 pub mod render;
+pub mod shards;
 
 use crate::analysis::atlas::{self, AtlasData, AtlasParams, Cell};
 use crate::error::Error;

@@ -135,6 +135,9 @@ fn panels() -> [Panel; 4] {
 }
 
 /// The SVG plot.
+///
+/// # Errors
+/// [`RenderError`] when drawing fails.
 pub fn plot(d: &AtlasData) -> Result<String, RenderError> {
     let p = &d.params;
     let height = 2 * (430 + KEY_HEIGHT);

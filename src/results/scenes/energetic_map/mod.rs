@@ -73,6 +73,10 @@ impl MapParams {
 /// The truncation for stop stiffness k/k₁: the book's one rule
 /// ([`crate::analysis::convergence::matched_modes`]: at least 10 modes, and as many as one
 /// contact needs for its observables to 1 %).
+///
+/// # Errors
+/// The errors of [`crate::analysis::convergence::matched_modes`]: `Error::Unsupported` when N*
+/// is unresolved or above the model's largest N, `Error::Parameter` for k/k₁ or ζ₁ out of range.
 pub fn matched_modes(k_over_k1: f64, zeta1: f64) -> Result<usize, Error> {
     crate::analysis::convergence::matched_modes(k_over_k1, 1e-2, zeta1, 10)
 }
@@ -169,6 +173,10 @@ fn point(p: &MapParams, omega: f64, k: f64, modes: usize, index: u64) -> Result<
 
 /// Computes every point (in parallel, deterministic for the seed whatever the thread
 /// count: each point has its own random stream).
+///
+/// # Errors
+/// A k the stiffness matching cannot serve ([`matched_modes`]), a model out of range
+/// (`Error::Parameter`), a flow that cannot be built, or a run the simulator refuses.
 pub fn compute(p: &MapParams, progress: &dyn Progress) -> Result<MapData, Error> {
     let grid: Vec<(f64, f64)> = p
         .k_over_k1

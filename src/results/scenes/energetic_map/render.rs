@@ -17,6 +17,9 @@ fn special(c: &Cell) -> Option<(RGBColor, &'static str)> {
 }
 
 /// The SVG plot.
+///
+/// # Errors
+/// [`RenderError`] when drawing fails.
 pub fn plot(d: &MapData) -> Result<String, RenderError> {
     let p = &d.params;
     let mut svg = String::new();

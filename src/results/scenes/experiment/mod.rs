@@ -161,6 +161,10 @@ impl ExperimentParams {
 }
 
 /// Computes the mapping and the orbit in physical units.
+///
+/// # Errors
+/// A model out of range (`Error::Parameter`), a flow that cannot be built, or a run the
+/// simulator refuses (chatter, a broken invariant), here or in the sensitivity runs.
 pub fn compute(p: &ExperimentParams) -> Result<ExperimentData, Error> {
     let length_for = |r: &Rig| r.beam.length_for_frequency(MEASURED_F1, &r.material);
     let mapping = Mapping {

@@ -15,6 +15,9 @@ const FREE: RGBColor = RGBColor(0, 114, 178);
 const CONTACT: RGBColor = RGBColor(213, 40, 0);
 
 /// The SVG plot.
+///
+/// # Errors
+/// [`RenderError`] when drawing fails.
 pub fn plot(d: &ExperimentData) -> Result<String, RenderError> {
     let mut svg = String::new();
     {

@@ -90,6 +90,10 @@ fn eigenvalues(n: usize, k: f64) -> Result<Vec<f64>, ParameterError> {
 }
 
 /// Runs the scene.
+///
+/// # Errors
+/// [`ParameterError`] for a largest N out of 1…400, or a k/k₁ range that gives a negative or
+/// NaN stiffness.
 pub fn compute(params: &Fig2Params) -> Result<Fig2Data, ParameterError> {
     let max_n = params.modes.iter().copied().max().unwrap_or(1);
     crate::error::count_in_range("modes N", max_n, crate::model::galerkin::MAX_MODES)?;

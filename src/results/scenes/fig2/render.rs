@@ -10,6 +10,9 @@ use super::Fig2Data;
 use plotters::prelude::*;
 
 /// The SVG plot.
+///
+/// # Errors
+/// [`RenderError`] when drawing fails.
 pub fn plot(d: &Fig2Data) -> Result<String, RenderError> {
     let mut svg = String::new();
     {

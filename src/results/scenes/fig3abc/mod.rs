@@ -125,6 +125,11 @@ fn one_contact(n: usize, eps: f64, alpha: f64) -> Result<(DVector<f64>, f64), Er
 }
 
 /// Runs the scene.
+///
+/// # Errors
+/// A one-contact problem out of range (ε, N or α: `Error::Parameter`), a flow that cannot be
+/// built, a run the simulator refuses, or `Error::Unsupported` when the tip does not leave
+/// the stop within one time unit.
 pub fn compute(p: &Fig3abcParams) -> Result<Fig3abcData, Error> {
     use rayon::prelude::*;
     let k1 = galerkin::first_modal_stiffness();

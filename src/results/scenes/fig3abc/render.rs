@@ -80,6 +80,9 @@ fn panel<DB: DrawingBackend>(
 }
 
 /// The SVG plot: (a) N = 1, (b), (c) N = 2 modes 1 and 2, and the gap for every N.
+///
+/// # Errors
+/// [`RenderError`] when drawing fails.
 pub fn plot(d: &Fig3abcData) -> Result<String, RenderError> {
     let mut svg = String::new();
     {

@@ -130,6 +130,10 @@ fn profile(
 }
 
 /// Runs the scene.
+///
+/// # Errors
+/// Never in practice: a law the parameters make fail (N or r out of range) is recorded in
+/// its profile, not raised; only a mode shape that cannot be built is a [`ParameterError`].
 pub fn compute(p: &Fig3dParams) -> Result<Fig3dData, ParameterError> {
     let s: Vec<f64> = (0..p.samples)
         .map(|i| i as f64 / (p.samples - 1) as f64)
@@ -145,7 +149,7 @@ pub fn compute(p: &Fig3dParams) -> Result<Fig3dData, ParameterError> {
                 "stiffness-limit" => stiffness_limit(n, p.restitution),
                 _ => collocation(n, p.restitution, &equally_spaced_points(n)),
             };
-            let post = r.map(|r| restitution::apply(&r, &pre));
+            let post = r.and_then(|r| restitution::apply(&r, &pre));
             profiles.push(profile(law, n, post, p, &s, &phi1)?);
         }
     }

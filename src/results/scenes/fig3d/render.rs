@@ -9,6 +9,9 @@ use super::Fig3dData;
 use plotters::prelude::*;
 
 /// The SVG plot.
+///
+/// # Errors
+/// [`RenderError`] when drawing fails.
 pub fn plot(d: &Fig3dData) -> Result<String, RenderError> {
     let mut svg = String::new();
     {

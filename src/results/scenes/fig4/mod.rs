@@ -228,7 +228,7 @@ fn panel(p: &Fig4Params, modes: usize, paper: OrbitKind) -> Result<Fig4Panel, Er
         root_tolerance: p.loose_root_tolerance,
     });
     let loose = orbit::settle(&loose_sim, &rest, p.transient, p.window, 0)?.kind;
-    let reference = p.reference_rtol.map(|rtol| {
+    let reference = p.reference_rtol.map(|rtol| -> Result<_, Error> {
         let t_end = end as f64 * period;
         let r = dopri5::integrate(
             &m,
@@ -238,7 +238,7 @@ fn panel(p: &Fig4Params, modes: usize, paper: OrbitKind) -> Result<Fig4Panel, Er
                 rtol,
                 atol: rtol * 1e-3,
             },
-        );
+        )?;
         let entries = r
             .events
             .iter()
@@ -256,8 +256,9 @@ fn panel(p: &Fig4Params, modes: usize, paper: OrbitKind) -> Result<Fig4Panel, Er
                 .map(|(a, b)| (a.time - b.time).abs())
                 .fold(0.0, f64::max)
         });
-        (entries, diff)
+        Ok((entries, diff))
     });
+    let reference = reference.transpose()?;
     let random_starts = orbit::random_orbits(&sim, p.random_starts, p.seed, p.transient, p.window)?;
     let literal = Simulator::new(case(p, modes, p.literal_caption_zeta1).model()?)?;
     let literal_caption = orbit::settle(&literal, &rest, p.transient, p.window, 0)?.kind;
@@ -285,6 +286,10 @@ fn panel(p: &Fig4Params, modes: usize, paper: OrbitKind) -> Result<Fig4Panel, Er
 }
 
 /// Runs the scene (one task per N, in parallel).
+///
+/// # Errors
+/// `Error::Parameter` for no cases, a window below 2 periods or a model out of range; a flow
+/// that cannot be built; a run the simulator or the Dormand–Prince reference refuses.
 pub fn compute(p: &Fig4Params) -> Result<Fig4Data, Error> {
     if p.cases.is_empty() || p.window < 2 {
         return Err(crate::error::ParameterError::new(

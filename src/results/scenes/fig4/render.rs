@@ -25,6 +25,9 @@ fn pieces(points: &[(f64, f64, bool)]) -> Vec<(Vec<(f64, f64)>, bool)> {
 }
 
 /// The SVG plot.
+///
+/// # Errors
+/// [`RenderError`] when drawing fails.
 pub fn plot(d: &Fig4Data) -> Result<String, RenderError> {
     // the contacts of the long-contact orbits, magnified, in a last row
     let zoomed: Vec<&super::Fig4Panel> = d

@@ -119,6 +119,11 @@ fn covered(set: &[OverlayBranch], k: f64, kind: (u64, usize), v: f64, spacing: f
 }
 
 /// The branch set of truncation `modes`, seeded from the brute-force diagram `d`.
+///
+/// # Errors
+/// A model out of range (`Error::Parameter`), a flow that cannot be built, a run the
+/// simulator refuses, or a failed continuation of the Figure 4 orbit (a seed from the
+/// diagram that does not continue is skipped).
 pub fn branch_set(p: &Fig5Params, d: &Fig5Data, modes: usize) -> Result<BranchSet, Error> {
     let fam = family(p, modes);
     let s = settings(p);

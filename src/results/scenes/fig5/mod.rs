@@ -88,6 +88,10 @@ impl Fig5Params {
     }
 
     /// Every count at least what the diagram needs, the k range positive and increasing.
+    ///
+    /// # Errors
+    /// [`ParameterError`] for no truncations, an N out of 1…400, starts out of 1…1000, points out
+    /// of 1…100 000, fewer than 2 recorded periods, or a k range that is not 0 < lower < upper.
     pub fn validate(&self) -> Result<(), ParameterError> {
         if self.modes.is_empty() {
             return Err(ParameterError::new("truncations N", "none", "at least one"));
@@ -259,6 +263,10 @@ pub fn forced(p: &Fig5Params, modes: usize, k_over_k1: f64) -> Forced {
 }
 
 /// The state a start of the diagram ends in after the transient (the seed of a branch).
+///
+/// # Errors
+/// A model out of range (`Error::Parameter`), a flow that cannot be built, or a transient the
+/// simulator refuses (`Error::Chatter`, `Error::Invariant`).
 pub fn point_state(
     p: &Fig5Params,
     modes: usize,
@@ -318,6 +326,11 @@ fn point(
 }
 
 /// Runs the scene; `progress` is called once per finished (N, k) point.
+///
+/// # Errors
+/// Parameters that fail [`Fig5Params::validate`] or a model out of range (`Error::Parameter`);
+/// a flow that cannot be built; a run the simulator refuses; shooting for the rigid limit's
+/// orbits that does not converge; or the errors of [`branches::branch_set`].
 pub fn compute(p: &Fig5Params, progress: &(dyn Fn() + Sync)) -> Result<Fig5Data, Error> {
     p.validate()?;
     let grid = p.grid();

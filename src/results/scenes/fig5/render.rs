@@ -12,6 +12,9 @@ use plotters::prelude::*;
 /// The SVG plot: one panel per N, each with its own velocity range. Points repeating on a
 /// periodic orbit are drawn once (to 1e-3 of the panel's range), which keeps the file small
 /// without changing what is seen; the N = 1 panel states its rigid limit (k → ∞).
+///
+/// # Errors
+/// [`RenderError`] when drawing fails.
 pub fn plot(d: &Fig5Data) -> Result<String, RenderError> {
     let rows = d.diagrams.len().max(1);
     let mut svg = String::new();

@@ -146,6 +146,10 @@ fn measure(p: &Fig5Params, modes: usize, k_over_k1: f64) -> Result<Option<Rotati
 }
 
 /// The bands of every N ≥ 2 whose (1,1) branch has a Neimark–Sacker pair.
+///
+/// # Errors
+/// A model out of range (`Error::Parameter`), a flow that cannot be built, or a run the
+/// simulator refuses; a fixed point not found by shooting is no error (the k is skipped).
 pub fn bands(p: &Fig5Params, d: &Fig5Data) -> Result<Vec<Band>, Error> {
     let mut out = Vec::new();
     for set in d.branches.iter().filter(|s| s.modes >= 2) {

@@ -72,28 +72,18 @@ struct ModeOneSamples {
 }
 
 impl Observer for ModeOneSamples {
-    fn needs_period_boundaries(&self) -> bool {
-        true
-    }
     fn segment(&mut self, seg: &SegmentView) {
-        let dt = seg.start.period / self.per_period as f64;
-        let mut j = (seg.start.offset / dt).ceil() as i64;
         let tip = seg.simulator().model().tip();
         let n = tip.len();
-        while j < self.per_period as i64 {
-            let s = j as f64 * dt - seg.start.offset;
-            if s >= seg.end {
-                break;
-            }
+        for (s, t) in seg.start.grid(seg.end, self.per_period) {
             let x = seg.state(s);
             let d = tip.dot(&x.rows(0, n));
             self.samples.push((
-                seg.start.time() + s,
+                t,
                 d,
                 tip[0] * x[0],
                 seg.region == crate::model::galerkin::Region::Contact,
             ));
-            j += 1;
         }
     }
 }
@@ -306,6 +296,10 @@ fn scan_point(rho: f64, index: usize, p: &Fig6Params) -> Result<ScanPoint, Error
 }
 
 /// Runs the scene: the cases (in parallel), then the scan (in parallel, with progress).
+///
+/// # Errors
+/// A model out of range (`Error::Parameter`), a flow that cannot be built, a run the
+/// simulator refuses, or a failed continuation of the (1,1) branch in d₀.
 pub fn compute(p: &Fig6Params, progress: &dyn Progress) -> Result<Fig6Data, Error> {
     let specs = [
         ("a", Reading::PrintedEq37),

@@ -234,6 +234,9 @@ fn scan_panel<DB: DrawingBackend>(
 }
 
 /// The SVG plot.
+///
+/// # Errors
+/// [`RenderError`] when drawing fails.
 pub fn plot(d: &Fig6Data) -> Result<String, RenderError> {
     let rows = d.cases.len().div_ceil(2);
     let mut svg = String::new();

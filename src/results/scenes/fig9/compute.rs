@@ -105,6 +105,10 @@ where
 }
 
 /// Runs the scene.
+///
+/// # Errors
+/// A model out of range (`Error::Parameter`), a flow that cannot be built, or a run the
+/// simulator refuses (chatter, a broken invariant).
 pub fn compute(p: &Fig9Params, progress: &dyn Progress) -> Result<Fig9Data, Error> {
     let (sim, o, discarded) = primary_orbit(p)?;
     let scale = sim.model().free_tip_amplitude();

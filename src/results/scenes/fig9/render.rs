@@ -196,6 +196,9 @@ fn scan_panel<DB: DrawingBackend>(
 }
 
 /// The SVG plot.
+///
+/// # Errors
+/// [`RenderError`] when drawing fails.
 pub fn plot(d: &Fig9Data) -> Result<String, RenderError> {
     let mut svg = String::new();
     {

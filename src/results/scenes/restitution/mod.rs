@@ -149,6 +149,10 @@ fn nordmark(p: &RestitutionParams, omega: f64) -> Result<Nordmark, Error> {
 }
 
 /// Runs the scene.
+///
+/// # Errors
+/// A law or model out of range (`Error::Parameter`), a flow that cannot be built, or a run
+/// the compliant or the rigid-impact simulator refuses (`Error::Chatter`, ...).
 pub fn compute(p: &RestitutionParams) -> Result<RestitutionData, Error> {
     use rayon::prelude::*;
     let k1 = first_modal_stiffness();

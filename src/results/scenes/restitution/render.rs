@@ -10,6 +10,9 @@ use crate::results::render::{
 use plotters::prelude::*;
 
 /// The SVG plot.
+///
+/// # Errors
+/// [`RenderError`] when drawing fails.
 pub fn plot(d: &RestitutionData) -> Result<String, RenderError> {
     let mut svg = String::new();
     {

@@ -282,6 +282,10 @@ fn orbit_data(o: &Orbits, recompute: &[usize]) -> Result<Vec<OrbitData>, Error> 
 }
 
 /// Reads the committed peer results and recomputes this project's values.
+///
+/// # Errors
+/// `Error::Unsupported` when a committed peer file does not check; the errors of
+/// [`peers::recompute`] and [`peers::recompute_orbit`] for the runs asked to be recomputed.
 pub fn compute(p: &SideBySideParams) -> Result<SideBySideData, Error> {
     let (sims, orbits) = peers::committed().map_err(Error::Unsupported)?;
     let mut problems = Vec::new();

@@ -171,6 +171,12 @@ fn legend(area: &DrawingArea<SVGBackend, plotters::coord::Shift>) -> Result<(), 
 }
 
 /// The SVG: one work-precision panel per problem and one for the N = 10 orbit.
+///
+/// # Errors
+/// [`RenderError`] when drawing fails.
+///
+/// # Panics
+/// Never: every method it looks up ("DOP853", "Radau", "LSODA") is in the style table.
 pub fn plot(d: &SideBySideData) -> Result<String, RenderError> {
     let mut svg = String::new();
     {

@@ -112,6 +112,10 @@ fn check(i: usize, ours: f64, golden: f64) -> RootCheck {
 }
 
 /// The remainder of eq (4) for mode i over a ladder of k/k₁.
+///
+/// # Errors
+/// [`ParameterError`] for `i` out of 1…[`continuum::MAX_MODE_INDEX`] or a ladder entry that
+/// gives a negative or NaN stiffness.
 pub fn small_k_law(i: usize, ladder: &[f64]) -> Result<SmallKLaw, ParameterError> {
     let k1 = continuum::modal_stiffness(1)?;
     let ki = continuum::modal_stiffness(i)?;
@@ -142,6 +146,14 @@ pub fn small_k_law(i: usize, ladder: &[f64]) -> Result<SmallKLaw, ParameterError
 }
 
 /// Runs the scene.
+///
+/// # Errors
+/// [`ParameterError`] for `curve_modes` above [`continuum::MAX_MODE_INDEX`], a k/k₁ range or
+/// small-k ladder that gives a negative or NaN stiffness.
+///
+/// # Panics
+/// If the embedded golden file does not parse: never for the committed file, which the tests
+/// load.
 pub fn compute(params: &SpectrumParams) -> Result<SpectrumData, ParameterError> {
     let golden = GoldenRoots::load();
     let free = GoldenRoots::table(&golden.free)

@@ -48,6 +48,11 @@ pub struct LossOrder {
 }
 
 /// Losses for every k of `p` and every N of `p.loss_modes`.
+///
+/// # Errors
+/// A two-basis model out of range (`Error::Parameter`) or that cannot be built
+/// (`Error::Flow`, `Error::Unsupported`), a tip that does not leave the stop, or a run the
+/// model refuses (`Error::Invariant`).
 pub fn compute(p: &MatchingParams) -> Result<(Vec<Losses>, Vec<LossOrder>), Error> {
     let jobs: Vec<(f64, usize)> = p
         .k_over_k1

@@ -203,6 +203,11 @@ fn names(p: &MatchingParams) -> Vec<String> {
 }
 
 /// Runs the scene.
+///
+/// # Errors
+/// A discretisation or model out of range (`Error::Parameter`), a flow or eigenproblem that
+/// cannot be built or solved, a run that fails, or `Error::Unsupported` for a size ladder
+/// without its finest n, n/2 and n/4.
 pub fn compute(p: &MatchingParams, progress: &dyn Progress) -> Result<MatchingData, Error> {
     let mut jobs = Vec::new();
     for (ki, &k) in p.k_over_k1.iter().enumerate() {

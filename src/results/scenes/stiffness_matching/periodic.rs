@@ -53,6 +53,10 @@ fn ladders(p: &MatchingParams) -> [Ladder<'_>; 3] {
 }
 
 /// Every (k, ω) of `p`.
+///
+/// # Errors
+/// The errors of [`convergence::periodic`] for any (k, ω, size), or `Error::Unsupported` for
+/// a size ladder without its finest n, n/2 and n/4.
 pub fn compute(p: &MatchingParams) -> Result<Vec<OrbitsAt>, Error> {
     let mut jobs = Vec::new();
     for &k in &p.k_over_k1 {

@@ -15,6 +15,9 @@ const SHOWN: &str = "exit tip velocity";
 
 /// The SVG plot: (a) Galerkin error against N, (b) element error against n, (c) N*(k),
 /// (d)–(e) the velocity profiles.
+///
+/// # Errors
+/// [`RenderError`] when drawing fails.
 pub fn plot(d: &MatchingData) -> Result<String, RenderError> {
     let mut svg = String::new();
     {

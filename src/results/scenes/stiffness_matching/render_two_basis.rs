@@ -9,6 +9,9 @@ use crate::results::render::{
 use plotters::prelude::*;
 
 /// (g) the relative energy lost entering contact (one contact) against N, per k.
+///
+/// # Errors
+/// [`RenderError`] when drawing fails.
 pub fn losses<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
     d: &MatchingData,

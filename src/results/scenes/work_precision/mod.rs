@@ -235,6 +235,11 @@ fn best_of<T>(repeats: usize, mut f: impl FnMut() -> T) -> (T, f64) {
 }
 
 /// Runs the scene.
+///
+/// # Errors
+/// `Error::Parameter` for no root tolerances or an N and period count other than the
+/// committed reference's; `Error::Unsupported` if that reference does not check; a flow that
+/// cannot be built or a run the simulator or the Dormand–Prince reference refuses.
 pub fn compute(p: &WorkPrecisionParams) -> Result<WorkPrecisionData, Error> {
     if p.root_tolerances.is_empty() {
         return Err(ParameterError::new("root tolerances", "none", "at least one (the last is the reference)").into());
@@ -291,6 +296,7 @@ pub fn compute(p: &WorkPrecisionParams) -> Result<WorkPrecisionData, Error> {
             atol: rtol * 1e-3,
         };
         let (r, secs) = best_of(p.repeats, || dopri5::integrate(&model, &x0, t_end, tol));
+        let r = r?;
         let ev: Vec<(f64, bool)> = r.events.iter().map(|e| (e.time, e.entering)).collect();
         let (same, ee, se) = compare(&r.state, &ev);
         points.push(WorkPoint {

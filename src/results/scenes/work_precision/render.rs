@@ -14,6 +14,9 @@ use plotters::prelude::*;
 const FLOOR: f64 = 1e-16;
 
 /// The SVG plot.
+///
+/// # Errors
+/// [`RenderError`] when drawing fails.
 pub fn plot(d: &WorkPrecisionData) -> Result<String, RenderError> {
     let mut svg = String::new();
     {

@@ -110,6 +110,10 @@ fn point(p: &ScalingParams, modes: usize, k_over_k1: f64, repeats: usize) -> Res
 }
 
 /// Runs both lines, one point at a time (the times are meant to be of one core).
+///
+/// # Errors
+/// A model out of range (`Error::Parameter`), a flow that cannot be built, or a run the
+/// simulator refuses; shooting that does not converge is recorded, not raised.
 pub fn compute(p: &ScalingParams, repeats: usize) -> Result<Scaling, Error> {
     Ok(Scaling {
         along_modes: p

@@ -1,0 +1,688 @@
+//! The forced simulation of §5.2 as one call, for every front end: a transient discarded,
+//! then a recorded window — the contact events (impacts, for the rigid model), the period m
+//! and the entries per period n from the stroboscopic map, the certified maximum of the
+//! tip, the exact energy budget and dense output. The command line's `simulate` and the
+//! Python package's `simulate` are this function with their names for its options.
+//!
+//! **Recording never changes what is recorded.** How a run is cut into pieces (the
+//! transient in one run, the window in chunks of [`CHUNK`] periods; the rigid model's window
+//! period by period, for its strobe) depends only on the options that say what is run,
+//! never on what is recorded: dense output is sampled inside the exact pieces of the motion
+//! (the compliant model's segments, the rigid model's flights and sticking phases), and the
+//! energy budget and the final state only watch. So events, strobe and final state are the
+//! same bits with and without them (tested over models, laws and observers).
+
+use crate::analysis::orbit::detect_period;
+use crate::base::progress::{Progress, Task};
+use crate::engine::built::{BuiltModel, Variant};
+use crate::engine::rigid::{Outcome, RigidEvent, RigidImpact, RigidObserver};
+use crate::engine::sim::{
+    Clock, DenseStates, Energy, EnergyBudget, EventView, Observer, SegmentView, Simulator, Stats,
+    Strobe, TipMax, TipMaximum,
+};
+use crate::error::{Error, ParameterError};
+use crate::model::ranges::Count;
+use nalgebra::DVector;
+use serde::Serialize;
+use std::time::Instant;
+
+/// Periods simulated and discarded (at ~10 µs a period for N = 10, 1e8 is about 20 minutes).
+pub const PERIODS: Count = Count {
+    name: "periods",
+    symbol: "",
+    min: 0,
+    max: 100_000_000,
+    why: "at ~10 µs a period for N = 10, 1e8 periods take about 20 minutes",
+};
+
+/// Periods recorded after the transient.
+pub const RECORD: Count = Count {
+    name: "record",
+    symbol: "",
+    min: 0,
+    max: 100_000,
+    why: "the window's events and strobe are kept in memory",
+};
+
+/// Dense samples per forcing period.
+pub const DENSE_PER_PERIOD: Count = Count {
+    name: "dense_per_period",
+    symbol: "",
+    min: 1,
+    max: 10_000,
+    why: "ten thousand samples resolve a contact of 1e-4 T",
+};
+
+/// The longest period m searched.
+pub const MAX_PERIOD: Count = Count {
+    name: "max_period",
+    symbol: "",
+    min: 1,
+    max: 1000,
+    why: "a period must be seen twice in the window, and the strobe keeps m + 1 samples",
+};
+
+/// Most numbers a dense output may hold (~250 MB as CSV, 80 MB in memory): refused upfront
+/// with the projected size rather than run out of memory.
+pub const MAX_DENSE_NUMBERS: u64 = 10_000_000;
+
+/// Most numbers the recorded events may hold (each event: its N modal velocities, N more
+/// after a rigid impact, and six more): ~250 MB of JSON. How many events a window has is not
+/// known before it is run, so a window with more is refused within a chunk of passing it.
+pub const MAX_EVENT_NUMBERS: usize = 10_000_000;
+
+/// Periods per chunk of the window (and of a rigid transient): one progress step, and the
+/// granularity of the event cap.
+pub const CHUNK: u64 = 1000;
+
+/// What a simulation runs and records.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SimulateOptions {
+    /// Periods simulated and discarded ([`PERIODS`]).
+    pub periods: u64,
+    /// Periods recorded after them ([`RECORD`]); at least one period in all.
+    pub record: u64,
+    /// Dense samples of the window per period ([`DENSE_PER_PERIOD`]), if wanted.
+    pub dense_per_period: Option<usize>,
+    /// The relative periodicity tolerance on the strobe (§5.2's 1e-9), in (0, 1).
+    pub periodicity_tolerance: f64,
+    /// The longest period m searched ([`MAX_PERIOD`]; also at most record/2).
+    pub max_period: usize,
+    /// The exact energy budget of the compliant model (about 20% of a run).
+    pub energy: bool,
+}
+
+/// The options every front end starts from: no transient, 32 periods recorded, no dense
+/// output, §5.2's tolerance 1e-9, periods up to 32 searched, the energy budget on.
+pub const DEFAULTS: SimulateOptions = SimulateOptions {
+    periods: 0,
+    record: 32,
+    dense_per_period: None,
+    periodicity_tolerance: 1e-9,
+    max_period: 32,
+    energy: true,
+};
+
+/// Dense samples per period when dense output is asked for without a count.
+pub const DEFAULT_DENSE_PER_PERIOD: usize = 200;
+
+impl Default for SimulateOptions {
+    fn default() -> Self {
+        DEFAULTS
+    }
+}
+
+impl SimulateOptions {
+    /// The longest period searched: `max_period`, and at most half the recorded periods
+    /// (a period must be seen twice).
+    pub fn period_search_depth(&self) -> usize {
+        self.max_period.min(self.record as usize / 2)
+    }
+
+    /// Checks every option against its range, for a model of N modes.
+    ///
+    /// # Errors
+    /// [`ParameterError`] naming the first option out of its range.
+    pub fn check(&self, modes: usize) -> Result<(), ParameterError> {
+        PERIODS.check(self.periods as i128)?;
+        RECORD.check(self.record as i128)?;
+        if self.periods == 0 && self.record == 0 {
+            return Err(ParameterError::new(
+                "periods/record",
+                0,
+                "at least one period in all",
+            ));
+        }
+        MAX_PERIOD.check(self.max_period as i128)?;
+        if let Some(per) = self.dense_per_period {
+            DENSE_PER_PERIOD.check(per as i128)?;
+            // rows of t, region, tip, tip velocity and the 2N state
+            let rows = (self.record * per as u64).max(1);
+            let numbers = rows.saturating_mul(4 + 2 * modes as u64);
+            if numbers > MAX_DENSE_NUMBERS {
+                return Err(ParameterError::new(
+                    "dense_per_period",
+                    format!(
+                        "{rows} rows of {} numbers (~{} MB of CSV) for record {} × \
+                         dense_per_period {per}",
+                        4 + 2 * modes,
+                        numbers * 25 / 1_000_000,
+                        self.record
+                    ),
+                    &format!(
+                        "at most {MAX_DENSE_NUMBERS} numbers (~250 MB as CSV): fewer recorded \
+                         periods or samples per period, or the window in pieces (its final \
+                         state, then a run from it)"
+                    ),
+                ));
+            }
+        }
+        if !(self.periodicity_tolerance > 0.0 && self.periodicity_tolerance < 1.0) {
+            return Err(ParameterError::new(
+                "periodicity_tolerance",
+                self.periodicity_tolerance,
+                "a number in (0, 1)",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// One event of the recorded window: an entry into or exit from contact (compliant), or an
+/// impact (rigid).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SimEvent {
+    /// t, the time of the event (non-dimensional beam time).
+    pub time: f64,
+    /// The forcing cycle it falls in.
+    pub cycle: i64,
+    /// Its forcing phase, as a fraction of the period in [0, 1).
+    pub phase: f64,
+    /// Entering contact (compliant) or an impact (rigid).
+    pub entering: bool,
+    /// A touch with zero normal velocity (compliant): recorded, no switch.
+    pub grazing: bool,
+    /// Tip velocity at the event (rigid: before the impact).
+    pub tip_velocity: f64,
+    /// Rigid: tip velocity after the impact.
+    pub outgoing_tip_velocity: Option<f64>,
+    /// Modal velocities η̇ at the event (rigid: before the impact).
+    pub modal_velocities: Vec<f64>,
+    /// Rigid: modal velocities after the impact.
+    pub modal_velocities_after: Option<Vec<f64>>,
+}
+
+/// Dense output of the window, column by column: record × dense_per_period samples on the
+/// grid t = c·T + j·T/per_period from the window's start, its end excluded (the end is the
+/// final state); a rigid run that stops inside its window ends with a sample at the stop.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct DenseOutput {
+    /// t.
+    pub t: Vec<f64>,
+    /// In contact (compliant), or resting on the stop (rigid).
+    pub in_contact: Vec<bool>,
+    /// The tip displacement d = φ(1)ᵀη.
+    pub tip: Vec<f64>,
+    /// The tip velocity φ(1)ᵀη̇.
+    pub tip_velocity: Vec<f64>,
+    /// The states [η; η̇], one after another (2N numbers a sample).
+    pub states: Vec<f64>,
+}
+
+impl DenseOutput {
+    fn push(&mut self, t: f64, contact: bool, tip: f64, velocity: f64, x: &DVector<f64>) {
+        self.t.push(t);
+        self.in_contact.push(contact);
+        self.tip.push(tip);
+        self.tip_velocity.push(velocity);
+        self.states.extend_from_slice(x.as_slice());
+    }
+
+    /// The number of samples.
+    pub fn len(&self) -> usize {
+        self.t.len()
+    }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.t.is_empty()
+    }
+}
+
+/// How a run ended.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Ending {
+    /// It ran all its periods.
+    Completed,
+    /// A rigid run chattered under a law with no sticking limit, at t.
+    Chatter(f64),
+    /// A rigid run made more impacts than its policy's limit.
+    ImpactLimit,
+}
+
+impl std::fmt::Display for Ending {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Ending::Completed => write!(f, "completed"),
+            Ending::Chatter(t) => write!(f, "stopped at t = {t}: {CHATTER}"),
+            Ending::ImpactLimit => write!(
+                f,
+                "stopped: more impacts than the policy's limit (10 000 in a forcing period: \
+                 the tip bounces on the stop without accumulating, as an elastic law does \
+                 with the stop pressed)"
+            ),
+        }
+    }
+}
+
+const CHATTER: &str = "impacts accumulate (chatter), and this law changes the velocity \
+                       orthogonal to the tip at every impact, so the chatter has no sticking \
+                       limit (use the impulse-response law)";
+
+/// What a simulation found.
+#[derive(Debug, Clone)]
+pub struct Simulation {
+    /// The events of the recorded window.
+    pub events: Vec<SimEvent>,
+    /// The smallest m ≤ `max_period_searched` with ‖x(t₀+mT) − x(t₀)‖∞ below the tolerance
+    /// times ‖x(t₀)‖∞ at the end of the window; None if none (or < 2 recorded periods).
+    pub period_m: Option<u64>,
+    /// The smallest such residual (None with fewer than 2 recorded periods).
+    pub periodicity_residual: Option<f64>,
+    /// The longest period tested.
+    pub max_period_searched: usize,
+    /// Entries into contact (impacts) per period m, when periodic.
+    pub impacts_n: Option<u64>,
+    /// Entries into contact (impacts) in the whole window, grazes excluded.
+    pub contacts_in_window: u64,
+    /// The certified maximum of the tip in the window (compliant, with a window).
+    pub max_tip: Option<TipMaximum>,
+    /// Relative energy imbalance of the whole run (compliant, with the budget).
+    pub energy_imbalance: Option<f64>,
+    /// What round-off explains of it ([`EnergyBudget::round_off_bound`]).
+    pub energy_imbalance_bound: Option<f64>,
+    /// The eigenvector condition of the flows used (results good to about this × ε).
+    pub condition: f64,
+    /// How the run ended.
+    pub ending: Ending,
+    /// Where it ended.
+    pub final_clock: Clock,
+    /// The final state.
+    pub final_state: DVector<f64>,
+    /// Dense output of the window, if asked for.
+    pub dense: Option<DenseOutput>,
+    /// Wall time of the runs (the model's set-up excluded).
+    pub wall_seconds: f64,
+}
+
+/// Simulates `model` from `x0` at the start of cycle 0: `options.periods` discarded, then
+/// `options.record` recorded, reporting whole periods to `progress` and stopping when it
+/// is cancelled.
+///
+/// # Errors
+/// [`Error::Parameter`] for options out of range, a start of the wrong length, or a window
+/// whose events pass [`MAX_EVENT_NUMBERS`]; [`Error::Chatter`] for a compliant stop beyond
+/// its contact cap, or a rigid run that stops before its window records anything;
+/// [`Error::Interrupted`] when `progress` is cancelled; [`Error::Invariant`] for a run
+/// that breaks an invariant of the exact solution.
+pub fn simulate(
+    model: &BuiltModel,
+    x0: &DVector<f64>,
+    options: &SimulateOptions,
+    progress: &dyn Progress,
+) -> Result<Simulation, Error> {
+    options.check(model.modes())?;
+    let started = Instant::now();
+    let task = progress.task("simulate: periods", options.periods + options.record);
+    let mut out = match model.variant() {
+        Variant::Compliant(sim) => compliant(sim, x0, options, task.as_ref(), progress)?,
+        Variant::Rigid(rigid) => self::rigid(rigid, x0, options, task.as_ref(), progress)?,
+    };
+    out.condition = model.condition();
+    out.wall_seconds = started.elapsed().as_secs_f64();
+    Ok(out)
+}
+
+/// The period search on the strobe's last samples: (m, residual, depth).
+fn period_search(
+    options: &SimulateOptions,
+    strobe: &[DVector<f64>],
+) -> (Option<u64>, Option<f64>, usize) {
+    let max_m = options.period_search_depth();
+    if strobe.len() < 2 || max_m == 0 {
+        return (None, None, max_m);
+    }
+    let (m, r) = detect_period(strobe, options.periodicity_tolerance, max_m);
+    (m, r.is_finite().then_some(r), max_m)
+}
+
+/// The refusal of a window whose events do not fit.
+fn too_many_events(options: &SimulateOptions, events: usize, modes: usize) -> Error {
+    ParameterError::new(
+        "record",
+        options.record,
+        &format!(
+            "a window whose events fit in {MAX_EVENT_NUMBERS} numbers (~250 MB as JSON); this \
+             one had more than {events} events at N = {modes}: fewer recorded periods, or the \
+             window in pieces (its final state, then a run from it)"
+        ),
+    )
+    .into()
+}
+
+/// Reports whole periods as segments pass them, and passes the caller's cancellation to
+/// the run (it asks for nothing else, so it changes nothing of the run).
+struct Ticker<'a> {
+    task: &'a dyn Task,
+    progress: &'a dyn Progress,
+    done: i64,
+}
+
+impl Observer for Ticker<'_> {
+    fn begin(&mut self, _: &Simulator, clock: &Clock, _: &DVector<f64>) {
+        self.done = clock.cycles;
+    }
+    fn segment(&mut self, seg: &SegmentView) {
+        let mut at = seg.start;
+        at.advance(seg.end);
+        self.tick(at.cycles);
+    }
+    fn end(&mut self, _: &Simulator, clock: &Clock, _: &DVector<f64>, _: &Stats) {
+        // where the run ends, exactly (a segment's end may round to just before it)
+        self.tick(clock.cycles);
+    }
+    fn interrupted(&self) -> bool {
+        self.progress.cancelled()
+    }
+}
+
+impl Ticker<'_> {
+    fn tick(&mut self, now: i64) {
+        if now > self.done {
+            self.task.advance((now - self.done) as u64);
+            self.done = now;
+        }
+    }
+}
+
+/// The window's events with their modal velocities, up to the cap.
+#[derive(Default)]
+struct EventLog {
+    events: Vec<SimEvent>,
+    numbers: usize,
+    full: bool,
+}
+
+impl Observer for EventLog {
+    fn event(&mut self, e: &EventView) {
+        let n = e.state.len() / 2;
+        self.numbers += n + 6;
+        if self.numbers > MAX_EVENT_NUMBERS {
+            self.full = true;
+            return;
+        }
+        self.events.push(SimEvent {
+            time: e.clock.time(),
+            cycle: e.clock.cycles,
+            phase: e.clock.offset / e.clock.period,
+            entering: e.entering,
+            grazing: e.grazing,
+            tip_velocity: e.tip_velocity,
+            outgoing_tip_velocity: None,
+            modal_velocities: e.state.rows(n, n).iter().copied().collect(),
+            modal_velocities_after: None,
+        });
+    }
+}
+
+fn compliant(
+    sim: &Simulator,
+    x0: &DVector<f64>,
+    options: &SimulateOptions,
+    task: &dyn Task,
+    progress: &dyn Progress,
+) -> Result<Simulation, Error> {
+    let period = sim.period();
+    let mut budget: Option<EnergyBudget> = None;
+    let mut add = |b: &EnergyBudget| {
+        budget = Some(budget.map_or(*b, |a| a.then(b)));
+    };
+    let mut ticker = Ticker {
+        task,
+        progress,
+        done: 0,
+    };
+    let budgeted = || options.energy.then(Energy::default);
+    // the transient, in one run
+    let mut energy = budgeted();
+    let end = sim.run_from(
+        x0,
+        sim.clock_at_cycle(0),
+        options.periods,
+        &mut (&mut energy, &mut ticker),
+    )?;
+    if let Some(e) = &energy {
+        add(&e.budget);
+    }
+    let mut segments = end.stats.segments;
+    let (mut x, mut clock) = (end.state, end.clock);
+    // the window, in chunks (restarts at period boundaries, fixed by `record` alone), so a
+    // window whose events pass the cap is refused within a chunk of passing it
+    let (mut log, mut max_tip) = (EventLog::default(), TipMax::default());
+    let mut dense = options.dense_per_period.map(DenseStates::new);
+    let mut strobe = Strobe::keeping_last(options.period_search_depth() + 1);
+    let mut remaining = options.record;
+    while remaining > 0 {
+        let step = remaining.min(CHUNK);
+        let mut energy = budgeted();
+        let end = sim.run_from(
+            &x,
+            clock,
+            step,
+            &mut (
+                &mut log,
+                &mut max_tip,
+                &mut energy,
+                &mut strobe,
+                (&mut dense, &mut ticker),
+            ),
+        )?;
+        if let Some(e) = &energy {
+            add(&e.budget);
+        }
+        segments += end.stats.segments;
+        if log.full {
+            return Err(too_many_events(
+                options,
+                log.events.len(),
+                sim.model().modes(),
+            ));
+        }
+        (x, clock) = (end.state, end.clock);
+        remaining -= step;
+    }
+    let (period_m, periodicity_residual, max_period_searched) =
+        period_search(options, &strobe.states());
+    let last = clock.cycles;
+    let contacts = |from: i64| {
+        log.events
+            .iter()
+            .filter(|e| e.entering && !e.grazing && e.cycle >= from)
+            .count() as u64
+    };
+    let dense = dense.map(|d| {
+        let mut out = DenseOutput::default();
+        for (t, contact, tip, v, x) in &d.samples {
+            out.push(*t, *contact, *tip, *v, x);
+        }
+        out
+    });
+    Ok(Simulation {
+        impacts_n: period_m.map(|m| contacts(last - m as i64)),
+        contacts_in_window: contacts(last - options.record as i64),
+        events: log.events,
+        period_m,
+        periodicity_residual,
+        max_period_searched,
+        max_tip: max_tip.maximum,
+        energy_imbalance: budget.map(|b| b.relative_imbalance()),
+        energy_imbalance_bound: budget.map(|b| b.round_off_bound(sim.condition(), segments)),
+        condition: 0.0,
+        ending: Ending::Completed,
+        final_clock: Clock::at_cycle(period, last),
+        final_state: x,
+        dense,
+        wall_seconds: 0.0,
+    })
+}
+
+/// Dense samples of a rigid run, taken inside its flights and sticking phases; passes the
+/// caller's cancellation to the run.
+struct RigidSamples<'a> {
+    per_period: Option<usize>,
+    out: DenseOutput,
+    progress: &'a dyn Progress,
+}
+
+impl RigidSamples<'_> {
+    fn sample(&mut self, model: &RigidImpact, t: f64, contact: bool, x: &DVector<f64>) {
+        let tip = model.sim.model().tip();
+        let n = tip.len();
+        let (d, v) = (tip.dot(&x.rows(0, n)), tip.dot(&x.rows(n, n)));
+        self.out.push(t, contact, d, v, x);
+    }
+}
+
+impl RigidObserver for RigidSamples<'_> {
+    fn flight(&mut self, model: &RigidImpact, start: &Clock, x: &DVector<f64>, duration: f64) {
+        let Some(per) = self.per_period else { return };
+        for (s, t) in start.grid(duration, per) {
+            self.sample(model, t, false, &model.coast(x, start, s));
+        }
+    }
+    fn held(&mut self, model: &RigidImpact, start: &Clock, x: &DVector<f64>, duration: f64) {
+        let Some(per) = self.per_period else { return };
+        for (s, t) in start.grid(duration, per) {
+            self.sample(model, t, true, &model.held(x, start, s));
+        }
+    }
+    fn interrupted(&self) -> bool {
+        self.progress.cancelled()
+    }
+}
+
+fn rigid(
+    model: &RigidImpact,
+    x0: &DVector<f64>,
+    options: &SimulateOptions,
+    task: &dyn Task,
+    progress: &dyn Progress,
+) -> Result<Simulation, Error> {
+    let period = model.sim.period();
+    let modes = model.sim.model().modes();
+    let (mut x, mut cycle) = (x0.clone(), 0i64);
+    let mut outcome = Outcome::Completed;
+    let mut final_clock = Clock::at_cycle(period, 0);
+    let (mut events, mut strobe) = (Vec::new(), Vec::new());
+    let keep = options.period_search_depth() + 1;
+    let mut samples = RigidSamples {
+        per_period: None,
+        out: DenseOutput::default(),
+        progress,
+    };
+    let total = options.periods + options.record;
+    let mut done = 0u64;
+    while done < total && outcome == Outcome::Completed {
+        // the transient in chunks, the window period by period (its strobe)
+        let recording = done >= options.periods;
+        let step = if recording {
+            1
+        } else {
+            (options.periods - done).min(CHUNK)
+        };
+        if recording && strobe.is_empty() {
+            strobe.push(x.clone());
+            samples.per_period = options.dense_per_period;
+        }
+        let r = model.run_observed(
+            &x,
+            Clock::at_cycle(period, cycle),
+            Clock::at_cycle(period, cycle + step as i64),
+            &mut samples,
+        )?;
+        if recording {
+            events.extend(r.events.iter().filter_map(|e| impact(e, period)));
+            if events.len() * (2 * modes + 6) > MAX_EVENT_NUMBERS {
+                return Err(too_many_events(options, events.len(), modes));
+            }
+        }
+        (outcome, x, final_clock) = (r.outcome, r.state, r.clock);
+        if outcome == Outcome::Completed {
+            cycle += step as i64;
+            done += step;
+            if recording {
+                strobe.push(x.clone());
+                if strobe.len() > keep {
+                    strobe.remove(0);
+                }
+            }
+        }
+        task.advance(step);
+    }
+    let ending = match outcome {
+        Outcome::Completed => Ending::Completed,
+        Outcome::Chatter(t) => Ending::Chatter(t),
+        Outcome::ImpactLimit => Ending::ImpactLimit,
+    };
+    // a run that stopped before its window began recorded nothing: that is no result
+    let window_start = options.periods as f64 * period;
+    if ending != Ending::Completed && (done < options.periods || final_clock.time() <= window_start)
+    {
+        let when = match ending {
+            Ending::Chatter(t) if t < window_start => {
+                format!("at t = {t}, before its window (from t = {window_start})")
+            }
+            Ending::Chatter(t) => format!("at t = {t}, as its window began"),
+            _ => format!("before its window (from t = {window_start})"),
+        };
+        let why = match ending {
+            Ending::ImpactLimit => "more impacts than the policy's limit",
+            _ => CHATTER,
+        };
+        return Err(Error::Chatter(format!(
+            "nothing recorded: the run stopped {when}: {why}"
+        )));
+    }
+    let dense = options.dense_per_period.map(|_| {
+        if ending != Ending::Completed {
+            // the last sample is the stop itself
+            samples.sample(model, final_clock.time(), model.at_rest_on_stop(&x), &x);
+        }
+        samples.out
+    });
+    let (period_m, periodicity_residual, max_period_searched) = period_search(options, &strobe);
+    let impacts = |from: i64| events.iter().filter(|e| e.cycle >= from).count() as u64;
+    Ok(Simulation {
+        impacts_n: period_m.map(|m| impacts(cycle - m as i64)),
+        contacts_in_window: impacts(cycle - options.record as i64),
+        events,
+        period_m,
+        periodicity_residual,
+        max_period_searched,
+        max_tip: None,
+        energy_imbalance: None,
+        energy_imbalance_bound: None,
+        condition: 0.0,
+        ending,
+        final_clock,
+        final_state: x,
+        dense,
+        wall_seconds: 0.0,
+    })
+}
+
+/// A rigid run's impact as an event of the window.
+fn impact(e: &RigidEvent, period: f64) -> Option<SimEvent> {
+    let RigidEvent::Impact {
+        time,
+        incoming,
+        outgoing,
+        before,
+        after,
+    } = e
+    else {
+        return None;
+    };
+    let c = Clock::at_time(period, *time);
+    Some(SimEvent {
+        time: *time,
+        cycle: c.cycles,
+        phase: c.offset / period,
+        entering: true,
+        grazing: false,
+        tip_velocity: *incoming,
+        outgoing_tip_velocity: Some(*outgoing),
+        modal_velocities: before.clone(),
+        modal_velocities_after: Some(after.clone()),
+    })
+}
