@@ -65,7 +65,21 @@ fn merge_refuses_missing_repeated_and_mixed_shards() {
     assert!(message(vec![a.clone(), other]).contains("other parameters"));
     let mut foreign = b.clone();
     foreign.build = "0.0.0 elsewhere".into();
-    assert!(message(vec![a.clone(), foreign]).contains("another build"));
+    assert!(message(vec![a.clone(), foreign.clone()]).contains("another build"));
+    // every shard of another build, alone or all: merged by that build, not this one (the
+    // atlas would be published under this build's commit)
+    let mut lone = a.clone();
+    lone.build = "0.0.0 elsewhere".into();
+    assert!(message(vec![lone, foreign]).contains("shards of this build"));
+    // parameters no model takes are refused, not merged
+    for edit in [
+        |p: &mut AtlasParams| p.gap = 1e300,
+        |p: &mut AtlasParams| p.zeta1 = 0.0,
+    ] {
+        let mut odd = a.clone();
+        edit(&mut odd.params);
+        assert!(message(vec![odd]).starts_with("invalid "));
+    }
     assert!(message(vec![]).contains("none"));
     assert!(atlas::merge(vec![a, b]).is_ok());
     for bad in ["3/3", "1", "a/2", "0/0", "-1/2"] {

@@ -135,6 +135,8 @@ pub fn scene_run(
             let why = "a directory (it is a file or a device)";
             return Err(bad("out", dir.display(), why));
         }
+        use impacting_cantilever::results::output_set;
+        output_set::check_set("out", dir, &output_set::SCENE_FILES).map_err(py_error)?;
     }
     let reporter = Reporter::new(progress);
     let result = py.detach(|| {

@@ -2,7 +2,8 @@
 //! is written.
 //!
 //! - A regular file, or nothing: written to a temporary file beside it and renamed over it,
-//!   so a reader sees the old file or the new one, never half of either.
+//!   so a reader sees the old file or the new one, never half of either; the new file keeps
+//!   the mode, group and (where permitted) owner of the one it replaces.
 //! - A symbolic link: the link is kept and its target written as above (as `rsync`,
 //!   coreutils and git treat links), at most 40 links deep.
 //! - A FIFO or a character device (`/dev/null`, `/dev/stdout`): written through, in place;
@@ -10,11 +11,10 @@
 //! - A directory, a block device or a socket: refused (checked before any work by
 //!   [`check_writable`]).
 //!
-//! A scene's output set (plot, tables, data, key numbers) is written as a whole
-//! ([`write_set`]): into a sibling temporary directory that is then swapped in, under a
-//! lock (removed after), so an interrupted run or two concurrent writers never leave new
-//! files beside old ones. Temporaries are registered while they exist; [`remove_temporaries`] deletes them
-//! (the command line calls it on SIGINT and SIGTERM).
+//! A scene's output set (plot, tables, data, key numbers) is written as a whole, replacing
+//! only files the program proves it wrote ([`crate::results::output_set`]). Temporaries are
+//! registered while they exist; [`remove_temporaries`] deletes them and puts back any old
+//! file moved aside (the command line calls it on SIGINT and SIGTERM).
 
 use crate::error::{Error, ParameterError};
 use std::io::Write;
@@ -32,24 +32,24 @@ static TEMPORARIES: Mutex<Vec<(PathBuf, Option<PathBuf>)>> = Mutex::new(Vec::new
 /// through a FIFO, which may block on its reader, do not hold it.
 static WRITING: Mutex<()> = Mutex::new(());
 
-fn writing() -> std::sync::MutexGuard<'static, ()> {
+pub(crate) fn writing() -> std::sync::MutexGuard<'static, ()> {
     WRITING
         .lock()
         .unwrap_or_else(|poisoned| poisoned.into_inner())
 }
 
-fn register(path: &Path) {
+pub(crate) fn register(path: &Path) {
     register_aside(path, None);
 }
 
 /// `path` holds the old contents of `home`, moved aside for a swap.
-fn register_aside(path: &Path, home: Option<&Path>) {
+pub(crate) fn register_aside(path: &Path, home: Option<&Path>) {
     if let Ok(mut t) = TEMPORARIES.lock() {
         t.push((path.to_path_buf(), home.map(Path::to_path_buf)));
     }
 }
 
-fn unregister(path: &Path) {
+pub(crate) fn unregister(path: &Path) {
     if let Ok(mut t) = TEMPORARIES.lock() {
         t.retain(|(p, _)| p != path);
     }
@@ -65,8 +65,9 @@ pub fn remove_temporaries() {
         Err(_) => return,
     };
     for (p, home) in entries {
+        // an old file moved aside goes back over whatever replaced it
         if let Some(home) = home {
-            if !home.exists() && std::fs::rename(&p, &home).is_ok() {
+            if std::fs::rename(&p, &home).is_ok() {
                 continue;
             }
         }
@@ -291,85 +292,59 @@ pub fn write_atomically(path: &Path, text: &str) -> Result<(), Error> {
             f.flush().map_err(io(&p))
         }
         Target::Replace(p) => {
-            let name = p
-                .file_name()
-                .map(|n| n.to_string_lossy().into_owned())
-                .unwrap_or_default();
-            let tmp = p.with_file_name(format!(".{name}.{}.tmp", std::process::id()));
+            // a signal waits for the rename in progress
             let _writing = writing();
-            register(&tmp);
-            let written = std::fs::write(&tmp, text)
-                .and_then(|()| std::fs::rename(&tmp, &p))
-                .map_err(io(&p));
-            if written.is_err() {
-                let _ = std::fs::remove_file(&tmp);
-            }
-            unregister(&tmp);
-            written
+            replace_file(&p, text)
         }
     }
 }
 
-/// Whether `dir` holds nothing but files named in `names` (and `.md` tables): a folder the
-/// writer owns and may replace as a whole.
-fn owned(dir: &Path, names: &[&str]) -> bool {
-    let Ok(entries) = std::fs::read_dir(dir) else {
-        return false;
-    };
-    entries.flatten().all(|e| {
-        let name = e.file_name().to_string_lossy().into_owned();
-        e.file_type().is_ok_and(|t| t.is_file())
-            && (names.contains(&name.as_str()) || name.ends_with(".md"))
-    })
-}
-
-/// Writes a set of files into `dir` as a whole: all into a sibling temporary directory,
-/// then swapped in for the old set, under a lock on `dir` held for the whole write (a
-/// concurrent writer waits). When `dir` holds files of its own (say `--out .`), each file
-/// is written atomically in place instead, and the others are left alone. A link to a
-/// directory is followed and kept.
+/// Gives `fresh` (a new file about to replace `old`) the mode, group and, where the process
+/// may, the owner of `old`; nothing when `old` does not exist.
 ///
 /// # Errors
-/// [`Error::Io`] when the parent cannot be created, the lock cannot be taken, `dir` is not a
-/// directory, or a file cannot be written or swapped in.
-pub fn write_set(dir: &Path, files: &[(String, String)]) -> Result<(), Error> {
-    let dir = match std::fs::canonicalize(dir) {
-        Ok(real) => real,
-        Err(_) => dir.to_path_buf(),
+/// [`Error::Io`] when the mode cannot be set (a group or owner the process may not give is
+/// left as it is: only a privileged process can give a file away).
+pub(crate) fn keep_metadata(old: &Path, fresh: &Path) -> Result<(), Error> {
+    use std::os::unix::fs::MetadataExt;
+    let Ok(meta) = std::fs::metadata(old) else {
+        return Ok(());
     };
-    let parent = match dir.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    std::fs::create_dir_all(&parent).map_err(io(&parent))?;
-    let name = dir
+    std::fs::set_permissions(fresh, meta.permissions()).map_err(io(fresh))?;
+    if std::os::unix::fs::chown(fresh, Some(meta.uid()), Some(meta.gid())).is_err() {
+        let _ = std::os::unix::fs::chown(fresh, None, Some(meta.gid()));
+    }
+    Ok(())
+}
+
+/// Replaces the regular file (or nothing) at `p` with `text`: a temporary beside it, given
+/// the old file's metadata, renamed over it.
+///
+/// # Errors
+/// [`Error::Io`] when the temporary cannot be written or renamed.
+pub(crate) fn replace_file(p: &Path, text: &str) -> Result<(), Error> {
+    let name = p
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "out".into());
-    let lock = OutputLock::acquire(&parent.join(format!(".{name}.lock")))?;
-    let names: Vec<&str> = files.iter().map(|(n, _)| n.as_str()).collect();
-    let result = if dir.exists() && !(dir.is_dir() && owned(&dir, &names)) {
-        if !dir.is_dir() {
-            return Err(Error::Io {
-                path: dir.display().to_string(),
-                source: std::io::Error::other("not a directory"),
-            });
-        }
-        files
-            .iter()
-            .try_for_each(|(n, text)| write_atomically(&dir.join(n), text))
-    } else {
-        swap_in(&parent, &name, &dir, files)
-    };
-    drop(lock);
-    result
+        .unwrap_or_default();
+    let tmp = p.with_file_name(format!(".{name}.cantilever-{}.tmp", std::process::id()));
+    register(&tmp);
+    let written = std::fs::write(&tmp, text)
+        .map_err(io(&tmp))
+        .and_then(|()| keep_metadata(p, &tmp))
+        .and_then(|()| std::fs::rename(&tmp, p).map_err(io(p)));
+    if written.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    unregister(&tmp);
+    written
 }
 
 /// An exclusive lock on an empty file beside the output, held while its set is written and
 /// removed on release, so nothing is left behind. Removing a lock file is only safe if a
 /// writer that was waiting on the removed file notices: after locking, a writer checks that
 /// the path still names the file it locked, and otherwise locks the path's new file.
-struct OutputLock {
+pub(crate) struct OutputLock {
     file: std::fs::File,
     path: PathBuf,
 }
@@ -379,7 +354,7 @@ impl OutputLock {
     /// lock in between, so even a busy folder needs a handful.
     const ATTEMPTS: usize = 1000;
 
-    fn acquire(path: &Path) -> Result<OutputLock, Error> {
+    pub(crate) fn acquire(path: &Path) -> Result<OutputLock, Error> {
         use std::os::unix::fs::MetadataExt;
         for _ in 0..Self::ATTEMPTS {
             // a link, FIFO or device here is not ours to lock (opening a FIFO would block)
@@ -429,58 +404,6 @@ impl Drop for OutputLock {
     }
 }
 
-/// The new set in a temporary sibling, then renamed into place (the old set moved aside
-/// first and removed after).
-fn swap_in(parent: &Path, name: &str, dir: &Path, files: &[(String, String)]) -> Result<(), Error> {
-    let pid = std::process::id();
-    let fresh = parent.join(format!(".{name}.{pid}.tmp"));
-    let old = parent.join(format!(".{name}.{pid}.old"));
-    let _writing = writing();
-    register(&fresh);
-    let _ = std::fs::remove_dir_all(&fresh);
-    let written = std::fs::create_dir(&fresh)
-        .map_err(io(&fresh))
-        .and_then(|()| {
-            files.iter().try_for_each(|(n, text)| {
-                let p = fresh.join(n);
-                std::fs::write(&p, text).map_err(io(&p))
-            })
-        });
-    if let Err(e) = written {
-        let _ = std::fs::remove_dir_all(&fresh);
-        unregister(&fresh);
-        return Err(e);
-    }
-    let had_old = dir.exists();
-    let swapped = (|| {
-        if had_old {
-            register_aside(&old, Some(dir));
-            std::fs::rename(dir, &old).map_err(io(dir))?;
-        }
-        std::fs::rename(&fresh, dir).map_err(io(dir))
-    })();
-    match swapped {
-        Ok(()) => {
-            unregister(&fresh);
-            if had_old {
-                let _ = std::fs::remove_dir_all(&old);
-                unregister(&old);
-            }
-            Ok(())
-        }
-        Err(e) => {
-            // put the old set back if it was moved
-            if had_old && !dir.exists() {
-                let _ = std::fs::rename(&old, dir);
-            }
-            unregister(&old);
-            let _ = std::fs::remove_dir_all(&fresh);
-            unregister(&fresh);
-            Err(e)
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -490,37 +413,6 @@ mod tests {
         let _ = std::fs::remove_dir_all(&d);
         std::fs::create_dir_all(&d).unwrap();
         d
-    }
-
-    #[test]
-    fn a_set_replaces_the_old_one_whole_and_spares_a_folder_of_its_own() {
-        let d = scratch("set");
-        let out = d.join("fig4");
-        let set = |v: &str| {
-            vec![
-                ("plot.svg".to_string(), format!("<svg>{v}</svg>")),
-                ("data.json".to_string(), v.to_string()),
-            ]
-        };
-        write_set(&out, &set("1")).unwrap();
-        write_set(&out, &set("2")).unwrap();
-        assert_eq!(std::fs::read_to_string(out.join("data.json")).unwrap(), "2");
-        // nothing left beside it, not even the lock
-        let extra: Vec<String> = std::fs::read_dir(&d)
-            .unwrap()
-            .flatten()
-            .map(|e| e.file_name().to_string_lossy().into_owned())
-            .filter(|n| n != "fig4")
-            .collect();
-        assert!(extra.is_empty(), "{extra:?}");
-        // a folder with a file of the user's is written file by file, the file kept
-        std::fs::write(out.join("notes.txt"), "mine").unwrap();
-        write_set(&out, &set("3")).unwrap();
-        assert_eq!(
-            std::fs::read_to_string(out.join("notes.txt")).unwrap(),
-            "mine"
-        );
-        assert_eq!(std::fs::read_to_string(out.join("data.json")).unwrap(), "3");
     }
 
     #[test]
@@ -546,23 +438,21 @@ mod tests {
     }
 
     #[test]
-    fn an_interrupted_swap_puts_the_old_set_back() {
+    fn an_interrupted_write_puts_the_old_file_back() {
         let d = scratch("restore");
-        let out = d.join("fig5");
-        write_set(&out, &[("data.json".to_string(), "old".to_string())]).unwrap();
-        // a swap interrupted after the old set was moved aside, before the new one is in
-        let aside = d.join(".fig5.1.old");
-        std::fs::rename(&out, &aside).unwrap();
-        register_aside(&aside, Some(&out));
-        let fresh = d.join(".fig5.1.tmp");
-        std::fs::create_dir(&fresh).unwrap();
-        register(&fresh);
+        let home = d.join("data.json");
+        std::fs::write(&home, "old").unwrap();
+        // interrupted after the old file was moved aside and the new one renamed in
+        let aside = d.join(".data.json.1.old");
+        std::fs::rename(&home, &aside).unwrap();
+        register_aside(&aside, Some(&home));
+        std::fs::write(&home, "new").unwrap();
+        let tmp = d.join(".plot.svg.1.tmp");
+        std::fs::write(&tmp, "").unwrap();
+        register(&tmp);
         remove_temporaries();
-        assert_eq!(
-            std::fs::read_to_string(out.join("data.json")).unwrap(),
-            "old"
-        );
-        assert!(!aside.exists() && !fresh.exists());
+        assert_eq!(std::fs::read_to_string(&home).unwrap(), "old");
+        assert!(!aside.exists() && !tmp.exists());
     }
 
     #[test]

@@ -7,6 +7,7 @@ pub mod diff;
 pub mod files;
 #[cfg(feature = "plots")]
 pub mod marker;
+pub mod output_set;
 pub mod peers;
 #[cfg(feature = "plots")]
 pub mod render;

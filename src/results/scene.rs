@@ -355,7 +355,7 @@ pub fn key_numbers_document(spec: &dyn Entry, out: &SceneOutput) -> serde_json::
 
 /// Writes `plot.svg`, `table.md` (and any further tables), `data.json` (with its
 /// provenance), `key_numbers.json` ([`key_numbers_document`]) and `verdict.json` into
-/// `dir`, as one set ([`crate::results::files::write_set`]: never new files beside old
+/// `dir`, as one set ([`crate::results::output_set::write_set`]: never new files beside old
 /// ones).
 ///
 /// # Errors
@@ -386,7 +386,7 @@ pub fn write(spec: &dyn Entry, out: &SceneOutput, dir: &Path) -> Result<(), Erro
     for (name, table) in &out.rendered.extra_tables {
         files.push((format!("{name}.md"), table.clone()));
     }
-    crate::results::files::write_set(dir, &files)
+    crate::results::output_set::write_set(dir, &files)
 }
 
 /// The plots' text as the book's prose writes it: `X_Y` (a run of letters and digits after

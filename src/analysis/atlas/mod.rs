@@ -34,6 +34,7 @@ pub use shard::{build, compute, compute_shard, merge, Partial, Shard, PARTIAL_FO
 use crate::engine::sim::Simulator;
 use crate::error::{self, Error, ParameterError};
 use crate::model::problems::Forced;
+use crate::model::ranges;
 use cell::{CellSearch, Found};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -271,7 +272,10 @@ impl AtlasParams {
                 ));
             }
         }
-        // the model checks the rest (k, ω, ζ₁, d₀ ranges) with its own messages
+        // ζ₁ and d₀ in the ranges every model takes (a shard with d₀ = 1e300 or ζ₁ = 0 is
+        // not an atlas of this model); the model checks k and ω at the grid's corners
+        ranges::ZETA1.check(self.zeta1)?;
+        ranges::GAP.check(self.gap)?;
         self.model(1, self.k_over_k1_range.1, self.omega_range.1)?;
         self.model(1, self.k_over_k1_range.0, self.omega_range.0)?;
         Ok(())

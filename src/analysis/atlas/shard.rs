@@ -320,6 +320,22 @@ pub fn merge(parts: Vec<Partial>) -> Result<AtlasData, Error> {
                 part.shard.index, part.shard.count, part.build
             ));
         }
+        // the merged atlas is published under this build's version and commit: shards of
+        // another build are merged by that build
+        if part.build != build() {
+            return Err(Error::Parameter(ParameterError::new(
+                "atlas shards",
+                format!(
+                    "shard {}/{} computed by build {}",
+                    part.shard.index, part.shard.count, part.build
+                ),
+                &format!(
+                    "shards of this build ({}): merge them with the build that computed \
+                     them, or compute them again with this one",
+                    build()
+                ),
+            )));
+        }
         if part.params != params {
             return refuse(format!(
                 "shard {}/{} computed with other parameters",

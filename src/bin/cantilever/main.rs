@@ -32,7 +32,11 @@ use std::process::ExitCode;
 #[command(
     name = "cantilever",
     version,
-    about = "The impacting cantilever (Melcher, Champneys & Wagg 2013): scenes, checks and the book"
+    about = "The impacting cantilever (Melcher, Champneys & Wagg 2013): scenes, checks and the book",
+    after_help = "Exit status: 0 done; 2 bad input (an option out of its range, one the command or \
+                  the model does not take, an output path that cannot be written); 3 no period \
+                  found; 4 not converged; 5 chatter; 6 unsupported by the model or method; 130 \
+                  interrupted; 1 anything else (the book's Output formats has the table)."
 )]
 struct Cli {
     #[command(subcommand)]
@@ -84,8 +88,9 @@ enum Command {
     /// rigid: before and after the impact); max_tip — the certified largest tip
     /// displacement of the window with its time and tolerance (compliant; null for the
     /// rigid model); outcome — "completed", or why a rigid run stopped inside its window
-    /// (chatter without a sticking limit): the output then ends at the stop and the exit
-    /// status is 1 (a run that stops before its window is refused); energy_imbalance — the
+    /// (chatter without a sticking limit, or an impact cap): the output then ends at the
+    /// stop and the exit status is 5 (a run that stops before its window is an error, status
+    /// 5: it records nothing); energy_imbalance — the
     /// unaccounted part of the exact energy budget of the whole run (compliant);
     /// eigenvector_condition — the flow is good to about this × ε; units — T, (β₁⁻)², f₁,
     /// k₁ and the free tip amplitude at ω.
@@ -301,7 +306,14 @@ macro_rules! errln {
 /// On SIGINT or SIGTERM, deletes the temporary files of any write under way and exits
 /// with 128 + the signal, as a shell expects.
 fn clean_up_on_signals() {
-    use signal_hook::consts::{SIGINT, SIGTERM};
+    use signal_hook::consts::{SIGINT, SIGTERM, SIGXFSZ};
+    // A file size limit (`ulimit -f`) would kill the run mid-write by default, before its
+    // temporaries are removed; with the signal caught, the write fails with an error
+    // instead (EFBIG) and the old output stays.
+    let _ = signal_hook::flag::register(
+        SIGXFSZ,
+        std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false)),
+    );
     if let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGINT, SIGTERM]) {
         std::thread::spawn(move || {
             if let Some(signal) = signals.forever().next() {
@@ -671,7 +683,10 @@ mod tests {
             .expect("the section");
         let cli = super::Cli::command();
         let mut seen = Vec::new();
-        let first_table = section.split("\n\n").nth(2).expect("the table");
+        let first_table = section
+            .split("\n\n")
+            .find(|chunk| chunk.starts_with("| command |"))
+            .expect("the table");
         for line in first_table.lines().filter(|l| l.starts_with("| `")) {
             let cells: Vec<&str> = line.split('|').map(str::trim).collect();
             let name = cells[1].trim_matches('`');

@@ -1,5 +1,7 @@
 //! The `--out` folder of a scene or a merged atlas: checked before any work, so that a run
-//! that cannot write its files is refused at once (exit 2) instead of after its computation.
+//! that cannot write its files is refused at once (exit 2) instead of after its computation:
+//! a folder that cannot be created or written, a link that leads nowhere, or a file of the
+//! set's names there that the program did not write.
 
 use impacting_cantilever::error::ParameterError;
 
@@ -16,6 +18,12 @@ pub fn writable_dir(dir: &std::path::Path) -> Result<(), ParameterError> {
             return Err(fail("a directory (it is a file or a device)".into()));
         }
         Ok(_) => true,
+        // a link that leads nowhere (dangling, or a loop): refused now, not after the work
+        Err(e) if std::fs::symlink_metadata(dir).is_ok_and(|m| m.file_type().is_symlink()) => {
+            return Err(fail(format!(
+                "a directory or a new path (it is a link that leads to no directory: {e})"
+            )));
+        }
         Err(_) => false,
     };
     if !exists {
@@ -50,8 +58,12 @@ pub fn writable_dir(dir: &std::path::Path) -> Result<(), ParameterError> {
         r
     };
     match probe_in(&probe_dir) {
-        Ok(()) => Ok(()),
-        Err(_) if exists && probe_in(dir).is_ok() => Ok(()),
-        Err(e) => Err(fail(format!("a writable directory ({e})"))),
+        Ok(()) => {}
+        Err(_) if exists && probe_in(dir).is_ok() => {}
+        Err(e) => return Err(fail(format!("a writable directory ({e})"))),
     }
+    // the files a scene writes must be the program's own where they exist (a user's file
+    // of one of those names is kept and the run refused now, not after the work)
+    use impacting_cantilever::results::output_set;
+    output_set::check_set("--out", dir, &output_set::SCENE_FILES)
 }

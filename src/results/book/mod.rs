@@ -129,6 +129,26 @@ pub fn build_only(
         .zip(&plan)
         .filter(|(_, p)| p.is_none())
         .count();
+    // a scene's folder must hold only the program's own files of its set's names (an older
+    // build's folder, without a manifest, is refused before the work, with the way out)
+    for (spec, p) in scenes.iter().zip(&plan) {
+        if p.is_none() {
+            let dir = generated.join(spec.name());
+            crate::results::output_set::check_set(
+                "the book's generated folder",
+                &dir,
+                &crate::results::output_set::SCENE_FILES,
+            )
+            .with_context(|| {
+                format!(
+                    "{} was not written by this version (delete it, or all of {}, and build \
+                     again)",
+                    dir.display(),
+                    generated.display()
+                )
+            })?;
+        }
+    }
     let task = progress.task("scenes", fresh as u64);
     let run_one = |spec: &&dyn Entry| -> Result<(SceneOutput, f64)> {
         let t = Instant::now();
@@ -237,12 +257,38 @@ pub fn build_only(
     let mut book = MDBook::load(root).context("loading the book")?;
     book.with_preprocessor(numbers_pre);
     book.with_preprocessor(MathPreprocessor);
-    book.build().context("building the book")?;
-    // The stylesheet refers to its fonts by relative path; mdBook copies only the CSS.
-    copy_dir(
-        &root.join("assets/math/font"),
-        &root.join("build/assets/math/font"),
-    )?;
+    // mdBook empties its build folder first: built beside it and swapped in whole, so an
+    // interrupted build leaves the previous book, not a few pages of the new one
+    let pid = std::process::id();
+    let fresh = root.join(format!(".build.cantilever-{pid}.tmp"));
+    let old = root.join(format!(".build.cantilever-{pid}.old"));
+    let _ = std::fs::remove_dir_all(&fresh);
+    crate::results::files::register(&fresh);
+    book.config.build.build_dir = fresh.clone();
+    let built = book.build().context("building the book").and_then(|()| {
+        // the stylesheet refers to its fonts by relative path; mdBook copies only the CSS
+        copy_dir(
+            &root.join("assets/math/font"),
+            &fresh.join("assets/math/font"),
+        )
+    });
+    if let Err(e) = built {
+        let _ = std::fs::remove_dir_all(&fresh);
+        crate::results::files::unregister(&fresh);
+        return Err(e);
+    }
+    let target = root.join("build");
+    {
+        let _writing = crate::results::files::writing();
+        if target.exists() {
+            std::fs::rename(&target, &old).context("moving the previous book aside")?;
+            crate::results::files::register_aside(&old, Some(&target));
+        }
+        std::fs::rename(&fresh, &target).context("putting the new book in place")?;
+        crate::results::files::unregister(&fresh);
+        let _ = std::fs::remove_dir_all(&old);
+        crate::results::files::unregister(&old);
+    }
     Ok(BuildReport {
         scene_seconds,
         reused,
