@@ -29,7 +29,7 @@
 //! | [`model`] | `continuum`, `galerkin`, `fe`, `forcing`, `restitution`, `asymptotics`, `problems`, `experiment`, `ranges`, `spec` | the paper's models as mathematics: eq (3) and its modes, the Galerkin matrices, the finite-element beam, the restitution laws, the asymptotics, named parameter sets, the rig, the supported ranges and the model as a user specifies it |
 //! | [`engine`] | `flow`, `sim`, `dopri5`, `rigid`, `two_basis`, `map`, `built` | time integration: the exact flow of one region, the certified simulator, an independent Dormand–Prince integrator, the rigid-impact and two-basis models, the one interface of every model and the model built from its specification |
 //! | [`analysis`] | `orbit`, `shooting`, `impact_section`, `continuation`, `atlas`, `energetic`, `harmonics`, `convergence`, `find_orbit`, `simulate`, `speed_bound` | what is computed from runs: periodic orbits and their stability, branches, the atlas, r_E, spectra, refinement in N, the simulation and orbit every front end runs, a bound on an orbit's tip speed |
-//! | [`results`] | `scene`, `scenes`, `render`, `marker`, `schematic`, `citation`, `cite`, `diff`, `files`, `peers`, `book` | the paper's results: scenes, plots and tables, citations, comparisons of key numbers, output files, other tools' results, the book |
+//! | [`results`] | `scene`, `scenes`, `render`, `marker`, `schematic`, `citation`, `cite`, `diff`, `files`, `output_set`, `peers`, `book` | the paper's results: scenes, plots and tables, citations, comparisons of key numbers, output files, other tools' results, the book |
 //!
 //! The `cantilever` command line (feature `cli`, on by default) lives in
 //! `src/bin/cantilever/`. The scenes and their plots need feature `plots` (on with `cli`);

@@ -1,0 +1,195 @@
+//! The fourth adversarial round's file reproducers, each run as the report ran it (in a
+//! scratch folder, the release or test binary): the program replaces only files it can
+//! prove it wrote, keeps a folder's metadata and place, refuses what it cannot write before
+//! the work, and never leaves temporaries, locks or a mixed set.
+#![cfg(feature = "cli")]
+
+#[path = "common/cli.rs"]
+mod cli;
+use cli::{cantilever_in, scratch};
+use std::os::unix::fs::{MetadataExt, PermissionsExt};
+use std::path::Path;
+
+fn listing(d: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(d)
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn item_1_a_users_files_are_kept_whatever_their_names() {
+    let d = scratch("r4-keep");
+    // a folder of the user's notes, all markdown (once taken for the writer's own)
+    let notes = d.join("notes");
+    std::fs::create_dir(&notes).unwrap();
+    std::fs::write(notes.join("2025.md"), "lab").unwrap();
+    std::fs::write(notes.join("todo.md"), "todo").unwrap();
+    let (code, _, err) = cantilever_in(&d, &["scene", "fig2", "--out", "notes"]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(
+        std::fs::read_to_string(notes.join("2025.md")).unwrap(),
+        "lab"
+    );
+    assert_eq!(
+        std::fs::read_to_string(notes.join("todo.md")).unwrap(),
+        "todo"
+    );
+    assert!(notes.join("plot.svg").exists() && notes.join("key_numbers.json").exists());
+    // a notes file added to a scene's folder before a rerun stays
+    std::fs::write(notes.join("my-notes.md"), "mine").unwrap();
+    let (code, _, err) = cantilever_in(&d, &["scene", "fig2", "--out", "notes"]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(
+        std::fs::read_to_string(notes.join("my-notes.md")).unwrap(),
+        "mine"
+    );
+    // `cd docs && cantilever scene fig2 --out .` with a README and a changelog
+    let docs = d.join("docs");
+    std::fs::create_dir(&docs).unwrap();
+    std::fs::write(docs.join("README.md"), "readme").unwrap();
+    std::fs::write(docs.join("CHANGELOG.md"), "changes").unwrap();
+    let (code, _, err) = cantilever_in(&docs, &["scene", "fig2", "--out", "."]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(
+        std::fs::read_to_string(docs.join("README.md")).unwrap(),
+        "readme"
+    );
+    assert_eq!(
+        std::fs::read_to_string(docs.join("CHANGELOG.md")).unwrap(),
+        "changes"
+    );
+    // a file of one of the set's names that the program did not write: refused before the
+    // work, the file untouched
+    let mine = d.join("mine");
+    std::fs::create_dir(&mine).unwrap();
+    std::fs::write(mine.join("table.md"), "my table").unwrap();
+    let (code, _, err) = cantilever_in(&d, &["scene", "fig2", "--out", "mine"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("table.md") && err.lines().count() == 1,
+        "{err}"
+    );
+    assert_eq!(listing(&mine), ["table.md"]);
+    assert_eq!(
+        std::fs::read_to_string(mine.join("table.md")).unwrap(),
+        "my table"
+    );
+    // nothing of the program's left beside or inside the folders but its set and manifest
+    assert_eq!(listing(&d), ["docs", "mine", "notes"]);
+    assert_eq!(
+        listing(&notes),
+        [
+            ".cantilever-manifest.json",
+            "2025.md",
+            "data.json",
+            "key_numbers.json",
+            "my-notes.md",
+            "plot.svg",
+            "table.md",
+            "todo.md",
+            "verdict.json",
+        ]
+    );
+}
+
+#[test]
+fn items_3_and_4_a_folder_keeps_its_metadata_and_its_place() {
+    let d = scratch("r4-meta");
+    // a group folder with the setgid bit
+    let shared = d.join("shared");
+    std::fs::create_dir(&shared).unwrap();
+    std::fs::set_permissions(&shared, std::fs::Permissions::from_mode(0o2770)).unwrap();
+    let before = std::fs::metadata(&shared).unwrap();
+    let (code, _, err) = cantilever_in(&d, &["scene", "fig2", "--out", "shared"]);
+    assert_eq!(code, 0, "{err}");
+    let after = std::fs::metadata(&shared).unwrap();
+    assert_eq!(after.mode() & 0o7777, 0o2770);
+    assert_eq!((after.ino(), after.gid()), (before.ino(), before.gid()));
+    // the shell's working directory stays where it is, the same folder
+    let e = d.join("e");
+    std::fs::create_dir(&e).unwrap();
+    let inode = std::fs::metadata(&e).unwrap().ino();
+    let (code, _, err) = cantilever_in(&e, &["scene", "fig2", "--out", "."]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(std::fs::metadata(&e).unwrap().ino(), inode);
+    assert!(e.join("plot.svg").exists());
+    let (code, _, err) = cantilever_in(&e, &["scene", "fig2", "--out", "."]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(std::fs::metadata(&e).unwrap().ino(), inode);
+    // a 600 file rewritten by --dense stays 600
+    let p = d.join("p.csv");
+    std::fs::write(&p, "old").unwrap();
+    std::fs::set_permissions(&p, std::fs::Permissions::from_mode(0o600)).unwrap();
+    let (code, _, err) = cantilever_in(
+        &d,
+        &[
+            "simulate",
+            "--modes",
+            "2",
+            "--zeta1",
+            "0.01",
+            "--omega",
+            "2",
+            "--periods",
+            "1",
+            "--record",
+            "1",
+            "--dense",
+            "p.csv",
+        ],
+    );
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(std::fs::metadata(&p).unwrap().mode() & 0o777, 0o600);
+    assert!(std::fs::read_to_string(&p)
+        .unwrap()
+        .starts_with("t,in_contact"));
+}
+
+#[test]
+fn item_5_a_link_that_leads_nowhere_is_refused_before_the_work() {
+    let d = scratch("r4-links");
+    std::os::unix::fs::symlink("missing", d.join("dangling")).unwrap();
+    std::os::unix::fs::symlink("loop-b", d.join("loop-a")).unwrap();
+    std::os::unix::fs::symlink("loop-a", d.join("loop-b")).unwrap();
+    // the atlas would take minutes: refused at once
+    for out in ["dangling", "loop-a"] {
+        let t = std::time::Instant::now();
+        let (code, _, err) = cantilever_in(&d, &["scene", "atlas", "--out", out]);
+        assert_eq!(code, 2, "{err}");
+        assert!(err.contains("link"), "{err}");
+        assert!(t.elapsed().as_secs_f64() < 20.0, "refused after the work");
+    }
+}
+
+#[test]
+fn item_2_a_size_limit_fails_the_write_and_keeps_the_old_set() {
+    let d = scratch("r4-limit");
+    let (code, _, err) = cantilever_in(&d, &["scene", "fig2", "--out", "set"]);
+    assert_eq!(code, 0, "{err}");
+    let set = d.join("set");
+    let before: Vec<(String, Vec<u8>)> = listing(&set)
+        .into_iter()
+        .map(|n| (n.clone(), std::fs::read(set.join(&n)).unwrap()))
+        .collect();
+    // `ulimit -f 4`: files above 4 blocks cannot be written (SIGXFSZ, then EFBIG)
+    let bin = env!("CARGO_BIN_EXE_cantilever");
+    let out = std::process::Command::new("sh")
+        .arg("-c")
+        .arg(format!("ulimit -f 4; exec '{bin}' scene fig2 --out set"))
+        .current_dir(&d)
+        .output()
+        .unwrap();
+    let code = out.status.code().unwrap_or(-1);
+    assert_eq!(code, 1, "{}", String::from_utf8_lossy(&out.stderr));
+    // the old set, whole, and nothing else: no temporaries, no journal, no lock
+    let after: Vec<(String, Vec<u8>)> = listing(&set)
+        .into_iter()
+        .map(|n| (n.clone(), std::fs::read(set.join(&n)).unwrap()))
+        .collect();
+    assert_eq!(after, before);
+    assert_eq!(listing(&d), ["set"]);
+}
