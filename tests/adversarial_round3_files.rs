@@ -233,7 +233,8 @@ fn item_10_special_files_are_written_through_and_links_kept() {
 /// renamed into place, or puts an old set back over it.)
 #[test]
 fn item_11_the_signal_clean_up_waits_for_a_swap_in_progress() {
-    use impacting_cantilever::results::files::{remove_temporaries, write_set};
+    use impacting_cantilever::results::files::remove_temporaries;
+    use impacting_cantilever::results::output_set::write_set;
     use std::sync::atomic::{AtomicBool, Ordering};
     let d = scratch("swap-and-signal");
     let out = d.join("fig5");

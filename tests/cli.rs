@@ -409,6 +409,8 @@ fn book_only_names_scenes_of_the_registry() {
 
 #[test]
 fn every_json_output_carries_its_schema_version_and_one_name_per_quantity() {
+    // a folder of this run's own (the temporary directory outlives runs)
+    let scene_out = format!("spectrum-out-{}", std::process::id());
     let fig4 = [
         "--modes",
         "3",
@@ -433,7 +435,7 @@ fn every_json_output_carries_its_schema_version_and_one_name_per_quantity() {
         ),
         (
             "scene",
-            vec!["scene", "spectrum", "--json", "--out", "spectrum-out"],
+            vec!["scene", "spectrum", "--json", "--out", &scene_out],
         ),
     ];
     let mut docs = Vec::new();

@@ -12,8 +12,8 @@
 //! full disk or a size limit fails here, with nothing replaced). A journal, [`JOURNAL`], then
 //! names the transaction; each old file is moved aside and its new one renamed in; the
 //! manifest is rewritten (the commit); the old files are removed and the journal with them.
-//! An error or a SIGINT/SIGTERM rolls back to the old set (the signal waits for a rename in
-//! progress); a run killed outright (SIGKILL) leaves its journal, and the next write to the
+//! An error rolls back to the old set; a SIGINT/SIGTERM waits for the write in progress (a
+//! few milliseconds) and finds the new set or the old one; a run killed outright (SIGKILL) leaves its journal, and the next write to the
 //! folder finishes or rolls back that transaction first.
 //!
 //! The folder itself is never replaced, so its mode, group and owner stay, and a folder that
@@ -175,6 +175,9 @@ pub fn write_set(dir: &Path, set: &[(String, String)]) -> Result<(), Error> {
         .cloned()
         .collect();
     let pid = std::process::id();
+    // From here to the end signals are held off: a SIGINT waits the milliseconds this
+    // takes, then finds the new set in place or the old one kept.
+    let _writing = writing();
     // the new files, beside the old ones: a full disk or a size limit stops here
     let mut written = Vec::new();
     for (name, text) in set {
@@ -197,9 +200,7 @@ pub fn write_set(dir: &Path, set: &[(String, String)]) -> Result<(), Error> {
         new_manifest.insert(name.clone(), checksum(text.as_bytes()));
     }
     let manifest_new = manifest_text(&new_manifest);
-    // the journal, then the renames and the commit, with signals held off (a SIGINT waits
-    // the milliseconds this takes, then finds the new set in place or the old one back)
-    let _writing = writing();
+    // the journal, then the renames and the commit
     let journal = serde_json::json!({
         "pid": pid,
         "files": names,
