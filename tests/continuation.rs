@@ -261,3 +261,38 @@ fn continuation_in_omega_finds_a_grazing_and_a_neimark_sacker_pair() {
         OrbitKind::Periodic { m: 1, n: 2 }
     );
 }
+
+/// A branch that runs into the end of the model's supported range (|d₀| ≤ 1e6) says so,
+/// not that its corrector failed (the fourth adversarial round's item 7).
+#[test]
+fn a_branch_ending_at_the_supported_range_says_so() {
+    use impacting_cantilever::analysis::continuation::{continue_from, ContinueOptions};
+    use impacting_cantilever::analysis::find_orbit::OrbitOptions;
+    use impacting_cantilever::base::progress::Silent;
+    use impacting_cantilever::model::spec::{ModelSpec, Start};
+    let spec = ModelSpec::from(problems::Forced {
+        gap: 1e5,
+        ..problems::figure4(2)
+    });
+    let options = ContinueOptions {
+        parameter: Parameter::Gap,
+        to: 1e4,
+        one_way: false,
+        max_step: 0.2,
+        doubling_up_to: 1,
+    };
+    let c = continue_from(
+        &spec,
+        &Start::Rest,
+        &OrbitOptions::default(),
+        &options,
+        &Silent,
+    )
+    .unwrap();
+    let up = &c.branches[1];
+    assert!(
+        up.end.contains("supported range ends") && up.end.contains("gap (d₀)"),
+        "{}",
+        up.end
+    );
+}

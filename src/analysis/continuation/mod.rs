@@ -298,14 +298,21 @@ fn correct(
     t: &DVector<f64>,
     m: u64,
     max_distance: f64,
+    limit: &mut Option<String>,
 ) -> Result<Option<(DVector<f64>, Linearised, usize)>, Error> {
     let d = z_pred.len() - 1;
     let mut z = z_pred.clone();
     for it in 0..=MAX_CORRECTOR {
         let lin = match linearise(family, sc, &z, m) {
             Ok(l) => l,
-            // a corrector step into an illegal parameter or a broken run: not converged
-            Err(Error::Parameter(_) | Error::Invariant(_) | Error::Flow(_)) => return Ok(None),
+            // a step beyond the model's supported range: remembered, so that a branch that
+            // ends there says so (and not that its corrector failed)
+            Err(Error::Parameter(e)) => {
+                *limit = Some(e.to_string());
+                return Ok(None);
+            }
+            // a corrector step into a broken run: not converged
+            Err(Error::Invariant(_) | Error::Flow(_)) => return Ok(None),
             Err(e) => return Err(e),
         };
         let arc = t.dot(&(&z - z_pred));
@@ -419,6 +426,8 @@ pub fn continue_branch(
         zs.rows_mut(0, d).copy_from(&sc.to_xi(&xs));
         shifted.push(zs);
     }
+    // why the last corrector step that left the model's range was refused
+    let mut limit: Option<String> = None;
     let end = loop {
         if points.len() >= settings.max_points {
             break format!("{} points reached", settings.max_points);
@@ -427,8 +436,9 @@ pub fn continue_branch(
             break "left the parameter range".to_string();
         }
         let pred = &z + &t * h;
-        match correct(family, &sc, &pred, &t, m, 2.0 * h)? {
+        match correct(family, &sc, &pred, &t, m, 2.0 * h, &mut limit)? {
             Some((zn, lin, its)) => {
+                limit = None;
                 let Some(tn) = tangent(&lin.jacobian, &t) else {
                     break format!("singular Jacobian at p = {:.6}", zn[d].exp());
                 };
@@ -464,11 +474,18 @@ pub fn continue_branch(
             None => {
                 h *= 0.5;
                 if h < settings.min_step {
-                    break format!(
-                        "corrector failed at p = {:.6} with steps below {:.0e}",
-                        z[d].exp(),
-                        settings.min_step
-                    );
+                    break match limit.take() {
+                        Some(why) => format!(
+                            "stopped at p = {:.6}, where the model's supported range ends \
+                             ({why})",
+                            z[d].exp()
+                        ),
+                        None => format!(
+                            "corrector failed at p = {:.6} with steps below {:.0e}",
+                            z[d].exp(),
+                            settings.min_step
+                        ),
+                    };
                 }
             }
         }

@@ -500,7 +500,10 @@ fn run(cli: Cli) -> Result<(), Failure> {
                     json_text("modes-needed", serde_json::to_value(&m).unwrap_or_default())
                 );
             } else {
-                outln!("N* = {} for relative accuracy {tolerance:e} at k = {stop_stiffness}k₁ (set by the {})", m.needed, m.hardest);
+                // "N* = 12", "N* ≈ 638 (estimated)": one relation sign, not "= ≈"
+                let needed = m.needed.to_string();
+                let relation = if needed.starts_with('≈') { "" } else { "= " };
+                outln!("N* {relation}{needed} for relative accuracy {tolerance:e} at k = {stop_stiffness}k₁ (set by the {})", m.hardest);
                 for (name, s) in &m.studies {
                     outln!(
                         "  {name:<22} limit {:>+.10e} ± {:.1e}  order {}",
@@ -539,7 +542,8 @@ fn run(cli: Cli) -> Result<(), Failure> {
         }
         Command::Atlas { args } => {
             let rows = atlas_cmd::run(&args)?;
-            errln!("wrote {} ({rows} rows)", args.out.display());
+            let plural = if rows == 1 { "row" } else { "rows" };
+            errln!("wrote {} ({rows} {plural})", args.out.display());
             Ok(())
         }
         Command::AtlasMerge { files, out } => {
