@@ -30,6 +30,27 @@ fn check(spec: &'static dyn Entry) -> Result<(), Failed> {
     if out.provenance.resolution != "book" {
         return Err(format!("{name}: ran at {} resolution", out.provenance.resolution).into());
     }
+    // `cantilever diff` of this fresh output against the published numbers finds nothing
+    // (labels against the integers they read as, no key lost)
+    let fresh = impacting_cantilever::results::diff::SceneKeys {
+        scene: name.to_string(),
+        resolution: Some("book".into()),
+        numbers: out.key_numbers.clone(),
+    };
+    let published = impacting_cantilever::results::diff::published()
+        .map_err(|e| format!("{name}: {e}"))?
+        .into_iter()
+        .filter(|s| s.scene == name)
+        .collect::<Vec<_>>();
+    let d = impacting_cantilever::results::diff::compare(&published, &[fresh])
+        .map_err(|e| format!("{name}: {e}"))?;
+    if d.any_beyond() {
+        return Err(format!(
+            "{name}: `diff published` of the fresh output:\n{}",
+            impacting_cantilever::results::diff::to_text(&d)
+        )
+        .into());
+    }
     let snapshot = out.key_numbers.to_snapshot();
     // insta panics with the diff; the harness reports the panic as this trial's failure
     insta::assert_snapshot!(format!("book-{name}"), snapshot);

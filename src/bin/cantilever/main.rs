@@ -218,6 +218,11 @@ enum Command {
         /// beyond_uncertainty.
         #[arg(long)]
         json: bool,
+        /// Numbers and scenes that OLD has and NEW does not are expected (listed, not a
+        /// change): without it they make the exit status 1, since a run whose numbers
+        /// vanished is not unchanged.
+        #[arg(long)]
+        allow_removed: bool,
     },
     /// Regenerate every scene and build the HTML book (needs the `book` feature).
     Book {
@@ -553,8 +558,14 @@ fn run(cli: Cli) -> Result<(), Failure> {
             errln!("wrote {}", dir.display());
             Ok(())
         }
-        Command::Diff { old, new, json } => {
-            let d = diff_cmd::run(&old, &new)?;
+        Command::Diff {
+            old,
+            new,
+            json,
+            allow_removed,
+        } => {
+            let mut d = diff_cmd::run(&old, &new)?;
+            d.allow_removed = allow_removed;
             if json {
                 let doc = impacting_cantilever::results::diff::to_json(&d);
                 outln!("{}", json_text("diff", doc));
