@@ -104,12 +104,27 @@ fn rebuilding_one_scene_reuses_only_current_outputs(tmp: &Path) {
     use impacting_cantilever::results::book::build_only;
     use impacting_cantilever::results::scene::{Resolution, Silent};
     let all = impacting_cantilever::results::scenes::all();
-    // a previous output that records another fingerprint is not current
-    let stale = tmp.join("src/generated/fig6/key_numbers.json");
-    let text = std::fs::read_to_string(&stale).unwrap();
-    let mut doc: serde_json::Value = serde_json::from_str(&text).unwrap();
-    doc["provenance"]["fingerprint"] = "0000".into();
-    std::fs::write(&stale, serde_json::to_string(&doc).unwrap()).unwrap();
+    // a previous output that records another fingerprint is not current: the set as an
+    // earlier build would have written it (through the writer, so the folder's manifest
+    // proves the files are the program's and they may be replaced)
+    let stale_dir = tmp.join("src/generated/fig6");
+    let mut set: Vec<(String, String)> = std::fs::read_dir(&stale_dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|name| !name.starts_with('.'))
+        .map(|name| {
+            let text = std::fs::read_to_string(stale_dir.join(&name)).unwrap();
+            (name, text)
+        })
+        .collect();
+    for (name, text) in &mut set {
+        if name == "key_numbers.json" {
+            let mut doc: serde_json::Value = serde_json::from_str(text).unwrap();
+            doc["provenance"]["fingerprint"] = "0000".into();
+            *text = serde_json::to_string(&doc).unwrap();
+        }
+    }
+    impacting_cantilever::results::output_set::write_set(&stale_dir, &set).unwrap();
     // nor is one that is missing a file
     std::fs::remove_file(tmp.join("src/generated/fig9/plot.svg")).unwrap();
     let only = vec!["fig2".to_string()];

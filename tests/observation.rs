@@ -184,3 +184,53 @@ fn the_issues_rigid_reproducers_agree_with_and_without_dense_output() {
         assert_eq!(written["time"], a["final_time"], "{law:?}");
     }
 }
+
+/// Options a command does not use are refused by name, never accepted and ignored:
+/// `orbit`/`continue` took --dense and --final-state and wrote nothing; the rigid model
+/// echoed --stop-stiffness, the compliant one --law and --restitution.
+#[test]
+fn options_are_used_or_refused_by_name() {
+    let model = ["--modes", "1", "--zeta1", "0.01", "--omega", "2"];
+    let cases: [(&[&str], &str); 6] = [
+        (&["orbit", "--dense", "x.csv"], "--dense"),
+        (&["orbit", "--final-state", "x.json"], "--final-state"),
+        (
+            &[
+                "continue",
+                "--parameter",
+                "omega",
+                "--to",
+                "2.2",
+                "--dense",
+                "x.csv",
+            ],
+            "--dense",
+        ),
+        (
+            &[
+                "simulate",
+                "--periods",
+                "1",
+                "--model",
+                "rigid",
+                "--stop-stiffness",
+                "100",
+            ],
+            "--stop-stiffness",
+        ),
+        (&["simulate", "--periods", "1", "--law", "newton"], "--law"),
+        (
+            &["simulate", "--periods", "1", "--restitution", "0.5"],
+            "--restitution",
+        ),
+    ];
+    for (args, flag) in cases {
+        let all: Vec<&str> = args.iter().chain(&model).copied().collect();
+        let (code, _, err) = common::cantilever(&all);
+        assert_eq!(code, 2, "{all:?}: {err}");
+        assert!(
+            err.contains(flag) && err.lines().count() == 1,
+            "{all:?}: {err}"
+        );
+    }
+}
