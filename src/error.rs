@@ -105,7 +105,7 @@ pub enum FlowError {
     /// The eigenvectors are too ill-conditioned (a nearly defective A, e.g. a mode at
     /// critical damping).
     #[error(
-        "the eigenvectors of A^± are too ill-conditioned (condition {0:.1e} > 1e10): a mode is nearly critically damped; perturb ζ₁ slightly"
+        "the eigenvectors of A^± are too ill-conditioned (condition {0:.1e} > 1e10): nearly equal eigenvalues: a mode nearly critically damped (perturb ζ₁ slightly), or, with heavy material damping and many modes, the over-damped modes' slow roots crowding at −1/γ (fewer modes)"
     )]
     IllConditioned(f64),
     /// An eigenvalue with positive real part: the model would be unstable.

@@ -137,3 +137,24 @@ fn study_recovers_a_power_law_and_answers_on_and_beyond_the_scan() {
     }
     assert!(Study::new(vec![1, 2, 3], vec![1.0, 1.0, 1.0], 1.0).is_err());
 }
+
+/// Heavy material damping (ζ₁ = 0.7 … 0.9 at k = 1000k₁) was refused outright: at N = 200
+/// the over-damped modes' slow roots crowd at −1/γ and the contact eigenvectors' condition
+/// passes 1e10. The scan now ends before that size and says so; the answer comes from the
+/// sizes it could resolve, and a lighter damping still scans to N = 200.
+#[test]
+fn modes_needed_with_heavy_damping_ends_its_scan_and_says_why() {
+    for zeta1 in [0.7, 0.8, 0.9] {
+        let m = convergence::modes_needed(1000.0, 1e-3, zeta1).unwrap();
+        assert!(m.largest_scanned < 200, "ζ₁ = {zeta1}: {m:?}");
+        let why = m.scan_end.as_deref().unwrap_or_default();
+        assert!(why.contains("ill-conditioned"), "ζ₁ = {zeta1}: {why}");
+        assert!(
+            matches!(m.needed, Needed::Scanned(n) if n <= m.largest_scanned),
+            "ζ₁ = {zeta1}: {:?}",
+            m.needed
+        );
+    }
+    let m = convergence::modes_needed(1000.0, 1e-3, 0.6).unwrap();
+    assert_eq!((m.largest_scanned, m.scan_end), (200, None));
+}

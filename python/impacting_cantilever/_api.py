@@ -279,5 +279,7 @@ def modes_needed(
         hardest=d["hardest"],
         studies=studies,
         criterion=d["criterion"],
+        largest_scanned=d["largest_scanned"],
+        scan_end=d["scan_end"],
         document=d,
     )

@@ -339,6 +339,10 @@ class ModesNeeded:
     studies: dict[str, Study]
     #: The smallest N with (β_N⁻)³ ≥ k, for comparison.
     criterion: int
+    #: The largest N scanned (200, or less when the scan had to end early).
+    largest_scanned: int
+    #: Why the scan ended before N = 200 (None: it did not).
+    scan_end: Optional[str]
     document: dict[str, Any] = field(compare=False)
 
     def __repr__(self) -> str:

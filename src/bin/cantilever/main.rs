@@ -518,9 +518,13 @@ fn run(cli: Cli) -> Result<(), Failure> {
                     );
                 }
                 outln!(
-                    "  criterion (β_N)³ = k gives N = {}; scanned N = 1 … 200",
-                    m.criterion
+                    "  criterion (β_N)³ = k gives N = {}; scanned N = 1 … {}",
+                    m.criterion,
+                    m.largest_scanned
                 );
+                if let Some(why) = &m.scan_end {
+                    outln!("  the scan ends at N = {}: {why}", m.largest_scanned);
+                }
                 outln!("  observable: one contact at d₀ = 0 from the first-mode velocity profile, unforced, ζ₁ = {zeta1}");
             }
             Ok(())
