@@ -344,7 +344,7 @@ pub fn settle_until_periodic<M: PeriodMap + ?Sized>(
 
 /// How long a transient may take: `chunk` periods at a time until the `window` after them
 /// is periodic, at most `max` periods in all ([`settle_until_periodic`]).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
 pub struct Settling {
     /// Periods discarded per step while not periodic.
     pub chunk: u64,

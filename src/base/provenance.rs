@@ -27,6 +27,10 @@ pub struct Provenance {
     /// ([`scene_fingerprint`]). Equal fingerprints mean the same code computed them.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fingerprint: Option<String>,
+    /// The scene's parameters a user set for this run (`key=value`, as given to `--set`);
+    /// empty for the scene as declared.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub settings: Vec<String>,
 }
 
 impl Provenance {
@@ -44,6 +48,7 @@ impl Provenance {
             date: utc_now(),
             resolution: resolution.to_string(),
             fingerprint: None,
+            settings: Vec::new(),
         }
     }
 
@@ -69,8 +74,13 @@ impl Provenance {
             "test" => "the tests' reduced resolution",
             other => other,
         };
+        let settings = if self.settings.is_empty() {
+            String::new()
+        } else {
+            format!(", with {}", self.settings.join(", "))
+        };
         format!(
-            "impacting-cantilever {} (commit {commit}{dirty}), {}, {resolution}, {}",
+            "impacting-cantilever {} (commit {commit}{dirty}), {}, {resolution}{settings}, {}",
             self.version, self.toolchain, self.date
         )
     }

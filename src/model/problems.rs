@@ -17,7 +17,7 @@ use serde::Serialize;
 /// The paper's forced bilinear model (eq 34 with the forcing of eq 37, material damping):
 /// N modes, k = `k_over_k1`·k₁, ζ₁ (γ = 2ζ₁/(β₁⁻)², errata E3), ω = `omega_over_w1`·(β₁⁻)²,
 /// gap d₀, α = 0.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
 pub struct Forced {
     /// N, the number of modes.
     pub modes: usize,

@@ -185,6 +185,7 @@ mod tests {
             date: "2026-11-21T00:00:00Z".into(),
             resolution: "book".into(),
             fingerprint: None,
+            settings: Vec::new(),
         };
         for b in [software_bibtex(&p), PAPER_BIBTEX.to_string()] {
             let depth = b.chars().try_fold(0i32, |d, c| match c {

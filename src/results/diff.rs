@@ -154,6 +154,10 @@ pub struct Diff {
     /// then listed but not a change.
     #[serde(skip)]
     pub allow_removed: bool,
+    /// The one scene compared when one side holds only it and the other holds it among
+    /// others (a scene's output folder against `published`): the other side's other
+    /// scenes are then not "removed" or "added".
+    pub only_scene: Option<String>,
 }
 
 impl Diff {
@@ -181,7 +185,17 @@ impl Diff {
 /// A message naming the scene when it is on both sides at different resolutions.
 pub fn compare(old: &[SceneKeys], new: &[SceneKeys]) -> Result<Diff, String> {
     let mut diff = Diff::default();
-    for n in new {
+    // one scene against a collection that has it: compare that scene alone
+    let single = |one: &[SceneKeys], many: &[SceneKeys]| {
+        (one.len() == 1 && many.len() > 1 && many.iter().any(|m| m.scene == one[0].scene))
+            .then(|| one[0].scene.clone())
+    };
+    let only = single(new, old).or_else(|| single(old, new));
+    let keep = |s: &&SceneKeys| only.as_ref().is_none_or(|o| &s.scene == o);
+    let old: Vec<&SceneKeys> = old.iter().filter(keep).collect();
+    let new: Vec<&SceneKeys> = new.iter().filter(keep).collect();
+    diff.only_scene = only;
+    for n in &new {
         match old.iter().find(|o| o.scene == n.scene) {
             None => diff.scenes_added.push(n.scene.clone()),
             Some(o) => {
@@ -198,7 +212,7 @@ pub fn compare(old: &[SceneKeys], new: &[SceneKeys]) -> Result<Diff, String> {
             }
         }
     }
-    for o in old {
+    for o in &old {
         if !new.iter().any(|n| n.scene == o.scene) {
             diff.scenes_removed.push(o.scene.clone());
         }
@@ -403,6 +417,11 @@ pub fn to_text(d: &Diff) -> String {
             s.push_str(&format!("{title}: {}\n", scenes.join(", ")));
         }
     }
+    if let Some(scene) = &d.only_scene {
+        s.push_str(&format!(
+            "compared scene {scene} alone (one side holds only it)\n"
+        ));
+    }
     let unchanged = d.rows_where(|c| *c == Change::Unchanged).len();
     let beyond = d
         .rows
@@ -425,6 +444,7 @@ pub fn to_json(d: &Diff) -> serde_json::Value {
         "rows": d.rows,
         "scenes_added": d.scenes_added,
         "scenes_removed": d.scenes_removed,
+        "only_scene": d.only_scene,
     })
 }
 

@@ -16,6 +16,7 @@ pub mod scene;
 pub mod scenes;
 #[cfg(feature = "plots")]
 pub mod schematic;
+pub mod settings;
 
 #[cfg(feature = "book")]
 pub mod book;

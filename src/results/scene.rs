@@ -10,6 +10,8 @@ use crate::base::provenance::Provenance;
 use crate::base::report::KeyNumbers;
 use crate::error::Error;
 use crate::error::RenderError;
+use crate::results::settings::{self, Setting};
+use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -142,8 +144,11 @@ pub trait Scene: Sync {
     /// Whether it measures wall times: such a scene runs alone, after the others, so that
     /// its timings do not share the cores with another scene's work.
     const TIMED: bool = false;
+    /// The parameters a user may set for a what-if (`cantilever scene NAME --set
+    /// key=value`), each with its range ([`crate::results::settings`]).
+    const SETTABLE: &'static [Setting] = &[];
     /// The parameters.
-    type Params: Serialize + Clone + Send + Sync;
+    type Params: Serialize + DeserializeOwned + Clone + Send + Sync;
     /// The computed data.
     type Data: Serialize;
     /// The parameters at a resolution.
@@ -219,6 +224,25 @@ pub trait Entry: Sync {
     /// The errors of [`Scene::compute`]; [`Error::Render`] when drawing fails;
     /// [`Error::Unsupported`] when the data or parameters cannot be written as JSON.
     fn run(&self, resolution: Resolution, progress: &dyn Progress) -> Result<SceneOutput, Error>;
+    /// [`Scene::SETTABLE`].
+    fn settable(&self) -> &'static [Setting];
+    /// Runs at `resolution` with the parameters `assignments` set (see
+    /// [`crate::results::settings`]); the provenance lists them. With none, as [`Entry::run`].
+    ///
+    /// # Errors
+    /// [`Error::Parameter`] for an assignment the scene refuses (checked before any work);
+    /// otherwise as [`Entry::run`].
+    fn run_set(
+        &self,
+        resolution: Resolution,
+        assignments: &[(String, String)],
+        progress: &dyn Progress,
+    ) -> Result<SceneOutput, Error>;
+    /// Checks `assignments` against [`Scene::SETTABLE`] without running.
+    ///
+    /// # Errors
+    /// [`Error::Parameter`] for an assignment the scene refuses.
+    fn check_set(&self, assignments: &[(String, String)]) -> Result<(), Error>;
 }
 
 impl<S: Scene> Entry for S {
@@ -268,6 +292,45 @@ impl<S: Scene> Entry for S {
     fn run(&self, resolution: Resolution, progress: &dyn Progress) -> Result<SceneOutput, Error> {
         run_with::<S>(&S::params(resolution), resolution, progress)
     }
+    fn settable(&self) -> &'static [Setting] {
+        S::SETTABLE
+    }
+    fn run_set(
+        &self,
+        resolution: Resolution,
+        assignments: &[(String, String)],
+        progress: &dyn Progress,
+    ) -> Result<SceneOutput, Error> {
+        if assignments.is_empty() {
+            return self.run(resolution, progress);
+        }
+        let (params, applied) = set_params::<S>(resolution, assignments)?;
+        let mut out = run_with::<S>(&params, resolution, progress)?;
+        out.provenance.settings = applied.iter().map(ToString::to_string).collect();
+        Ok(out)
+    }
+    fn check_set(&self, assignments: &[(String, String)]) -> Result<(), Error> {
+        set_params::<S>(Resolution::Book, assignments).map(|_| ())
+    }
+}
+
+/// The parameters of scene `S` at `resolution` with `assignments` applied.
+fn set_params<S: Scene>(
+    resolution: Resolution,
+    assignments: &[(String, String)],
+) -> Result<(S::Params, Vec<settings::Applied>), Error> {
+    let mut json = serde_json::to_value(S::params(resolution))
+        .map_err(|e| Error::Unsupported(format!("scene {} parameters: {e}", S::NAME)))?;
+    let applied = settings::apply(S::NAME, S::SETTABLE, &mut json, assignments)?;
+    let invariant =
+        |e: String| Error::Invariant(format!("scene {} parameters as set: {e}", S::NAME));
+    let params: S::Params =
+        serde_json::from_value(json.clone()).map_err(|e| invariant(e.to_string()))?;
+    // what is computed with is what the outputs record, value for value
+    if serde_json::to_value(&params).map_err(|e| invariant(e.to_string()))? != json {
+        return Err(invariant("they do not read back as set".into()));
+    }
+    Ok((params, applied))
 }
 
 /// The folder under `src/scenes/` that holds scene type `S` (`fig3abc` for `Fig3abc`).

@@ -25,6 +25,7 @@ use impacting_cantilever::error::{self, ParameterError};
 use impacting_cantilever::model::{continuum, galerkin};
 use impacting_cantilever::results::scene::{self, Resolution};
 use impacting_cantilever::results::scenes;
+use impacting_cantilever::results::settings;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -57,6 +58,15 @@ enum Command {
         /// Print the scene's key numbers as JSON to stdout.
         #[arg(long)]
         json: bool,
+        /// Set one of the scene's own parameters for a what-if, KEY=VALUE (repeatable; the
+        /// settable ones and their ranges: --list-parameters). The outputs record the
+        /// settings; `cantilever diff published/NAME OUT` then shows what moved.
+        #[arg(long = "set", value_name = "KEY=VALUE", allow_hyphen_values = true)]
+        set: Vec<String>,
+        /// List the parameters --set takes for this scene, with their values and ranges, and
+        /// exit (nothing is computed).
+        #[arg(long, conflicts_with_all = ["out", "json", "set"])]
+        list_parameters: bool,
     },
     /// Continuum eigenvalues (β_i⁺)⁴ against the N-mode Galerkin eigenvalues of K⁺.
     Modes {
@@ -430,12 +440,34 @@ fn run(cli: Cli) -> Result<(), Failure> {
             }
             Ok(())
         }
-        Command::Scene { name, out, json } => {
+        Command::Scene {
+            name,
+            out,
+            json,
+            set,
+            list_parameters,
+        } => {
             let spec = scenes::find(&name)?;
+            if list_parameters {
+                if spec.settable().is_empty() {
+                    outln!("scene {} has no parameters to set: its parameters are the paper's figure's own", spec.name());
+                } else {
+                    let params = spec.params_json(Resolution::Book);
+                    emit(&settings::table(spec.settable(), &params));
+                }
+                return Ok(());
+            }
+            let assignments = set
+                .iter()
+                .map(|a| settings::parse_assignment(a))
+                .collect::<Result<Vec<_>, _>>()?;
+            // refused before the output folder is touched or any work is done
+            spec.check_set(&assignments)?;
             let dir = out.unwrap_or_else(|| PathBuf::from("out").join(spec.name()));
             // an unwritable --out is bad input, found before the computation
             out_dir::writable_dir(&dir)?;
-            let output = spec.run(Resolution::Book, &progress::Bars::default())?;
+            let output =
+                spec.run_set(Resolution::Book, &assignments, &progress::Bars::default())?;
             scene::write(spec, &output, &dir)?;
             if json {
                 let doc = scene::key_numbers_document(spec, &output);

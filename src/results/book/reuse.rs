@@ -80,6 +80,12 @@ pub fn previous(
             provenance.resolution
         ));
     }
+    if !provenance.settings.is_empty() {
+        return Err(format!(
+            "its previous output was computed with --set {}",
+            provenance.settings.join(" --set ")
+        ));
+    }
     let current = scene_fingerprint(spec.module());
     match (&provenance.fingerprint, current) {
         (Some(old), Some(now)) if old == now => {}

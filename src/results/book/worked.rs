@@ -18,12 +18,23 @@ use std::time::Instant;
 /// The folder under `generated/`.
 pub const DIR: &str = "changing-the-model";
 
+/// How a change is made: parameters edited in the scene's code, or a `--set` of the
+/// command line (run through the same path, [`crate::results::scene::Entry::run_set`]).
+enum How {
+    Edit(Box<Fig4Params>),
+    Set(Vec<(String, String)>),
+}
+
+/// The line of Figure 4's parameters the method change edits (checked against the source
+/// by a test, so the chapter's diff is the real edit).
+const TRANSIENT_LINE: &str = "            transient: 1000,";
+
 /// The two changes, each as (name, what is changed in words, whether it should change a
-/// result, parameters).
-fn changes(resolution: Resolution) -> [(&'static str, String, bool, Fig4Params); 2] {
+/// result, how a reader repeats it (markdown), how it is made).
+fn changes(resolution: Resolution) -> [(&'static str, String, bool, String, How); 2] {
     let base = Fig4::params(resolution);
     let longer = base.transient + base.transient / 2;
-    let zeta1 = base.zeta1 * 1.1;
+    let zeta1 = "0.011";
     [
         (
             "method",
@@ -33,21 +44,33 @@ fn changes(resolution: Resolution) -> [(&'static str, String, bool, Fig4Params);
                 base.transient
             ),
             false,
-            Fig4Params {
+            format!(
+                "The edit, in `src/results/scenes/fig4/mod.rs` (a run length is part of the \
+                 method, so it is changed in the scene's code):\n\n```diff\n-{TRANSIENT_LINE}\n\
+                 +{}\n```\n\nthen `cantilever scene fig4 --out after` and `cantilever diff \
+                 published after`.",
+                TRANSIENT_LINE.replace("1000", &longer.to_string())
+            ),
+            How::Edit(Box::new(Fig4Params {
                 transient: longer,
                 ..base.clone()
-            },
+            })),
         ),
         (
             "model",
             format!(
                 "a change of model: the first mode's material damping ratio ζ₁ grows by ten \
-                 per cent, from {} to {}",
-                base.zeta1,
-                crate::base::report::pretty(zeta1, 3)
+                 per cent, from {} to {zeta1}",
+                base.zeta1
             ),
             true,
-            Fig4Params { zeta1, ..base },
+            format!(
+                "No edit is needed: ζ₁ is one of Figure 4's parameters a reader may set \
+                 (`cantilever scene fig4 --list-parameters` lists them with their ranges):\n\n\
+                 ```sh\ncantilever scene fig4 --set zeta1={zeta1} --out after\n\
+                 cantilever diff published after\n```"
+            ),
+            How::Set(vec![("zeta1".into(), zeta1.into())]),
         ),
     ]
 }
@@ -200,6 +223,14 @@ fn markdown(d: &Diff, what: &str, expected: bool, seconds: f64) -> String {
     s
 }
 
+/// The comparison's text with how to repeat the change after its first paragraph.
+fn with_repeat(text: &str, repeat: &str) -> String {
+    match text.split_once("\n\n") {
+        Some((head, rest)) => format!("{head}\n\n{repeat}\n\n{rest}"),
+        None => format!("{text}\n\n{repeat}\n"),
+    }
+}
+
 /// What one scene's published check costs: its computation at the book's resolution, as
 /// timed when it was last computed (scenes share the two cores, so alone each is quicker).
 fn timings(scene_seconds: &[(String, f64)]) -> String {
@@ -274,10 +305,15 @@ pub fn write(
     if current {
         return Ok(merged);
     }
-    for (name, what, expected, params) in changes(resolution) {
+    for (name, what, expected, repeat, how) in changes(resolution) {
         let t = Instant::now();
-        let out = scene::run_with::<Fig4>(&params, resolution, progress)
-            .with_context(|| format!("Figure 4 under the {name} change"))?;
+        let out = match how {
+            How::Edit(params) => scene::run_with::<Fig4>(&params, resolution, progress),
+            How::Set(assignments) => {
+                scene::Entry::run_set(&Fig4, resolution, &assignments, progress)
+            }
+        }
+        .with_context(|| format!("Figure 4 under the {name} change"))?;
         let seconds = t.elapsed().as_secs_f64();
         let d = diff::compare(
             &[diff::SceneKeys {
@@ -294,9 +330,19 @@ pub fn write(
         .map_err(anyhow::Error::msg)?;
         scene::write_atomically(
             &dir.join(format!("{name}.md")),
-            &markdown(&d, &what, expected, seconds),
+            &with_repeat(&markdown(&d, &what, expected, seconds), &repeat),
         )?;
     }
     scene::write_atomically(&stamp_file, &stamp)?;
     Ok(merged)
+}
+
+#[cfg(test)]
+mod tests {
+    /// The chapter's diff of the method change is the real edit: the line is in the source.
+    #[test]
+    fn the_method_change_edits_a_line_of_figure_4s_code() {
+        let source = include_str!("../scenes/fig4/mod.rs");
+        assert_eq!(source.matches(super::TRANSIENT_LINE).count(), 1);
+    }
 }

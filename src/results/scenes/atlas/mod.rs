@@ -169,6 +169,7 @@ impl Scene for Atlas {
         ("cells with coexisting stable orbits (at least)", "coexisting cells (lower bound)"),
         ("check with 10 more modes: the same orbit from rest", "N+10 check agrees"),
     ];
+    const SETTABLE: &'static [crate::results::settings::Setting] = &[crate::results::settings::ZETA1, crate::results::settings::GAP, crate::results::settings::SEED];
     type Params = AtlasParams;
     type Data = AtlasData;
 

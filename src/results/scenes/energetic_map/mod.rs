@@ -25,7 +25,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 /// What the scene computes.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, serde::Deserialize)]
 pub struct MapParams {
     /// ω/(β₁⁻)² values.
     pub omega_over_w1: Vec<f64>,
@@ -224,6 +224,7 @@ impl Scene for EnergeticMap {
         ("largest", "largest r_E"),
         ("points with a converged, unique r_E", "points with a value"),
     ];
+    const SETTABLE: &'static [crate::results::settings::Setting] = &[crate::results::settings::ZETA1, crate::results::settings::SEED];
     type Params = MapParams;
     type Data = MapData;
 

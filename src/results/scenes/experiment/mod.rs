@@ -128,7 +128,7 @@ pub struct ExperimentData {
 
 /// What the scene computes: the rig by beam theory (no parameters) and the Figure 9 orbit
 /// (scene `fig9`'s primary reading) in physical units.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, serde::Deserialize)]
 pub struct ExperimentParams {
     /// The Figure 9 problem (N = 20, k = 1000k₁, ζ₁ = 7.7e-4, ω = 1.7(β₁⁻)², d₀ = 0).
     pub problem: Forced,

@@ -12,7 +12,7 @@ use crate::model::galerkin::contact_eigenvalues;
 use serde::Serialize;
 
 /// What the scene computes.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, serde::Deserialize)]
 pub struct Fig2Params {
     /// Truncations N (panels a–c).
     pub modes: Vec<usize>,

@@ -24,7 +24,7 @@ use nalgebra::DVector;
 use serde::Serialize;
 
 /// What the scene computes.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, serde::Deserialize)]
 pub struct Fig3abcParams {
     /// Truncations N (the paper: 1 and 2; 3 and 10 extend it).
     pub modes: Vec<usize>,

@@ -18,7 +18,7 @@ use nalgebra::DVector;
 use serde::Serialize;
 
 /// What the scene computes.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, serde::Deserialize)]
 pub struct Fig3dParams {
     /// Truncations N.
     pub modes: Vec<usize>,

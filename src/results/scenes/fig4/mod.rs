@@ -21,7 +21,7 @@ use nalgebra::DVector;
 use serde::Serialize;
 
 /// What the scene computes.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, serde::Deserialize)]
 pub struct Fig4Params {
     /// Truncations N with the paper's (m, n).
     pub cases: Vec<(usize, u64, u64)>,
@@ -327,6 +327,7 @@ impl Scene for Fig4 {
     const CHAPTER: &'static str = "fig4.md";
     const METHOD: &'static str = "the N-mode compliant model from rest, 1000 periods discarded, simulated exactly (piecewise-linear flow, certified switching times); the orbit's period from the stroboscopic map (relative residual < 1e-9), checked with a longer transient, a looser root tolerance, an independent Dormand–Prince integrator, random starts and the other damping reading";
     const HEADLINE: &'static [(&'static str, &'static str)] = &[("N = 3 orbit", "N=3 orbit"), ("its penetration maxima per orbit period", "N=3 penetration maxima per orbit"), ("its dwell depth over the peak penetration", "N=3 dwell_depth_over_peak")];
+    const SETTABLE: &'static [crate::results::settings::Setting] = &[crate::results::settings::ZETA1, crate::results::settings::OMEGA, crate::results::settings::STOP_STIFFNESS];
     type Params = Fig4Params;
     type Data = Fig4Data;
 

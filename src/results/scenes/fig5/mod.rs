@@ -28,7 +28,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 /// What the scene computes.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, serde::Deserialize)]
 pub struct Fig5Params {
     /// Truncations N.
     pub modes: Vec<usize>,
@@ -418,6 +418,7 @@ impl Scene for Fig5 {
     const CHAPTER: &'static str = "fig5.md";
     const METHOD: &'static str = "brute-force bifurcation diagrams: at each of 200 log-spaced k and for 8 starts (rest and 7 seeded random states) the N-mode compliant model is simulated exactly for 1000 periods, then 50 are recorded; the impact velocities of settled orbits (stroboscopic residual < 1e-9) on the impact section d = d₀, ḋ > 0; the rigid limit of N = 1 (Newton's law, r = 1) by the rigid-impact model";
     const HEADLINE: &'static [(&'static str, &'static str)] = &[("spread of the impact velocities at k = k₁", "velocity spread at smallest k"), ("first k where N = 10 and N = 1 differ", "first orbit difference N=10 vs N=1"), ("share of k where N = 3 and N = 10 agree", "N=3 vs N=10 orbit agreement"), ("N = 1 rigid-limit impact velocity", "N=1 rigid-limit impact velocity")];
+    const SETTABLE: &'static [crate::results::settings::Setting] = &[crate::results::settings::ZETA1, crate::results::settings::OMEGA, crate::results::settings::SEED];
     type Params = Fig5Params;
     type Data = Fig5Data;
 

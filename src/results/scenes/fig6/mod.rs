@@ -29,7 +29,7 @@ use crate::results::scene::{Outcome, Progress, Rendered, Resolution, Scene, Verd
 use serde::Serialize;
 
 /// What the scene computes.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, serde::Deserialize)]
 pub struct Fig6Params {
     /// N of the published values (the paper's 20).
     pub modes: usize,

@@ -26,7 +26,7 @@ use crate::results::scene::{Outcome, Progress, Rendered, Resolution, Scene, Verd
 use serde::Serialize;
 
 /// What the scene computes.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, serde::Deserialize)]
 pub struct Fig9Params {
     /// N, the number of modes.
     pub modes: usize,
@@ -222,6 +222,7 @@ impl Scene for Fig9 {
         ("spectral peaks at modes", "peak modes"),
         ("d₀/A_free with five contact intervals", "five contact intervals at d0/A_free"),
     ];
+    const SETTABLE: &'static [crate::results::settings::Setting] = &[crate::results::settings::ZETA1, crate::results::settings::OMEGA, crate::results::settings::STOP_STIFFNESS, crate::results::settings::GAP];
     type Params = Fig9Params;
     type Data = Fig9Data;
 

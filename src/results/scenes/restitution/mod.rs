@@ -26,7 +26,7 @@ use nalgebra::DVector;
 use serde::Serialize;
 
 /// What the scene computes.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, serde::Deserialize)]
 pub struct RestitutionParams {
     /// α of the one-mode return ratio.
     pub alpha: f64,

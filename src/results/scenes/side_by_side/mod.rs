@@ -21,7 +21,7 @@ use crate::results::scene::{Group, Outcome, Progress, Rendered, Resolution, Scen
 use serde::Serialize;
 
 /// What the scene recomputes.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, serde::Deserialize)]
 pub struct SideBySideParams {
     /// Problems whose values the library recomputes and compares with the committed ones.
     pub recompute: Vec<String>,

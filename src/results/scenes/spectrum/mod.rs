@@ -16,7 +16,7 @@ use crate::base::verification::fitted_slope_with_error;
 use serde::Serialize;
 
 /// What the scene computes.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, serde::Deserialize)]
 pub struct SpectrumParams {
     /// Modes drawn in the frequency curves.
     pub curve_modes: usize,

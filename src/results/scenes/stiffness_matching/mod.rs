@@ -26,7 +26,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 /// What the scene computes.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, serde::Deserialize)]
 pub struct MatchingParams {
     /// k/k₁ values.
     pub k_over_k1: Vec<f64>,
@@ -358,6 +358,7 @@ impl Scene for StiffnessMatching {
         ("observables where the two limits agree", "limits that agree"),
         ("modes for 1 % at 10⁴k₁ (scanned)", "k=1e4 N* for 1e-2"),
     ];
+    const SETTABLE: &'static [crate::results::settings::Setting] = &[crate::results::settings::ZETA1];
     type Params = MatchingParams;
     type Data = MatchingData;
 

@@ -31,7 +31,7 @@ use serde::Serialize;
 use std::time::Instant;
 
 /// What the scene computes.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, serde::Deserialize)]
 pub struct WorkPrecisionParams {
     /// N, the number of modes.
     pub modes: usize,

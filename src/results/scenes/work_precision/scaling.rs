@@ -20,7 +20,7 @@ use nalgebra::DVector;
 use serde::Serialize;
 
 /// What the scaling runs cover.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, serde::Deserialize)]
 pub struct ScalingParams {
     /// N along the first line (k = 100k₁).
     pub modes: Vec<usize>,
