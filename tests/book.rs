@@ -95,7 +95,10 @@ fn book_builds_with_rendered_math_plots_and_tables() {
     assert!(method.contains("exits with status 0"), "{method}");
     assert!(model.contains("exits with status 1"), "{model}");
     // each shows how a reader repeats it: the exact edit, or the --set line
-    assert!(method.contains("```diff\n-            transient: 1000,"), "{method}");
+    assert!(
+        method.contains("```diff\n-            transient: 1000,"),
+        "{method}"
+    );
     assert!(model.contains("--set zeta1=0.011"), "{model}");
     rebuilding_one_scene_reuses_only_current_outputs(&tmp);
     std::fs::remove_dir_all(&tmp).ok();

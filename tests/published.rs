@@ -51,11 +51,52 @@ fn check(spec: &'static dyn Entry) -> Result<(), Failed> {
         )
         .into());
     }
+    // every number at the precision of its computation: the committed record of the values
+    // as computed, each within its reproducibility tolerance (results::record)
+    check_record(name, &out.key_numbers)?;
     let snapshot = out.key_numbers.to_snapshot();
     // insta panics with the diff; the harness reports the panic as this trial's failure
     insta::assert_snapshot!(format!("book-{name}"), snapshot);
     eprintln!("published {name}: {:.1} s", started.elapsed().as_secs_f64());
     Ok(())
+}
+
+/// The committed record of scene `name` against its fresh key numbers. Accepted as
+/// snapshots are: with `INSTA_UPDATE=always` the record is rewritten from this run.
+fn check_record(
+    name: &str,
+    numbers: &impacting_cantilever::base::report::KeyNumbers,
+) -> Result<(), Failed> {
+    use impacting_cantilever::results::record;
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/snapshots")
+        .join(format!("published__book-{name}.record.json"));
+    let fresh = record::record(name, numbers);
+    if std::env::var("INSTA_UPDATE").is_ok_and(|v| v == "always") {
+        let text = serde_json::to_string_pretty(&fresh).map_err(|e| e.to_string())? + "\n";
+        std::fs::write(&path, text).map_err(|e| format!("{}: {e}", path.display()))?;
+        return Ok(());
+    }
+    let text = std::fs::read_to_string(&path).map_err(|e| {
+        format!(
+            "{name}: no committed record {} ({e}); accept with INSTA_UPDATE=always",
+            path.display()
+        )
+    })?;
+    let committed: serde_json::Value =
+        serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    let moved = record::check(&committed, numbers);
+    if moved.is_empty() {
+        Ok(())
+    } else {
+        Err(format!(
+            "{name}: {} numbers differ from the committed record beyond their reproducibility \
+             tolerance (accept an intended change with INSTA_UPDATE=always):\n  {}",
+            moved.len(),
+            moved.join("\n  ")
+        )
+        .into())
+    }
 }
 
 fn main() {

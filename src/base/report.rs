@@ -33,7 +33,7 @@ impl Uncertainty {
 }
 
 /// A cited float.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, Serialize)]
 pub struct Cited {
     /// The value, rounded to `digits` significant figures.
     pub value: f64,
@@ -46,6 +46,29 @@ pub struct Cited {
     pub uncertainty: Uncertainty,
     /// The unit or scale ("" for a pure number).
     pub unit: String,
+    /// The method's own uncertainty of `computed`, before any widening by the rounding
+    /// (what "the computed value is good to …" states; read back from a file: as
+    /// `uncertainty`). Not part of a value's identity.
+    #[serde(skip)]
+    pub method: Uncertainty,
+}
+
+impl PartialEq for Cited {
+    fn eq(&self, other: &Self) -> bool {
+        (
+            self.value,
+            self.computed,
+            self.digits,
+            &self.uncertainty,
+            &self.unit,
+        ) == (
+            other.value,
+            other.computed,
+            other.digits,
+            &other.uncertainty,
+            &other.unit,
+        )
+    }
 }
 
 impl Cited {
@@ -57,6 +80,7 @@ impl Cited {
             .min(supported_digits(computed, uncertainty.value))
             .max(1);
         let value = round_sig(computed, digits);
+        let method = uncertainty.clone();
         let rounding = (value - computed).abs();
         let uncertainty = if rounding > uncertainty.value {
             Uncertainty::new(
@@ -76,6 +100,7 @@ impl Cited {
             digits,
             uncertainty,
             unit: unit.to_string(),
+            method,
         }
     }
 }
@@ -432,6 +457,7 @@ impl KeyNumbers {
                         digits: d,
                         uncertainty: Uncertainty::new(u, text("uncertainty_basis")),
                         unit: text("unit").to_string(),
+                        method: Uncertainty::new(u, text("uncertainty_basis")),
                     });
                 }
                 KeyValue::Series(cited)
@@ -447,6 +473,7 @@ impl KeyNumbers {
                         },
                         uncertainty: Uncertainty::new(u, text("uncertainty_basis")),
                         unit: text("unit").to_string(),
+                        method: Uncertainty::new(u, text("uncertainty_basis")),
                     }),
                     _ => return Err(bad("value and uncertainty must be finite, ± ≥ 0")),
                 }
@@ -581,6 +608,7 @@ fn cited_from_text(value: &str, uncertainty: Option<&str>, unit: &str) -> Option
         digits,
         uncertainty: Uncertainty::new(u, basis),
         unit: unit.to_string(),
+        method: Uncertainty::new(u, basis),
     })
 }
 

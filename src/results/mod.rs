@@ -9,6 +9,7 @@ pub mod files;
 pub mod marker;
 pub mod output_set;
 pub mod peers;
+pub mod record;
 #[cfg(feature = "plots")]
 pub mod render;
 pub mod scene;
