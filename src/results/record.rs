@@ -127,7 +127,8 @@ fn check_float(key: &str, old: &Value, new: &Cited, out: &mut Vec<String>) {
     };
     let allowed = t.max(tolerance(new));
     let moved = (new.computed - x).abs();
-    if !(moved <= allowed) {
+    // a NaN on either side is a move too
+    if moved.is_nan() || moved > allowed {
         out.push(format!(
             "{key}: {x:e} → {:e} (moved {moved:.1e}, its reproducibility tolerance {allowed:.1e}: {:.3}×)",
             new.computed,
