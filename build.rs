@@ -8,7 +8,8 @@
 //!   `Cargo.lock` and the compiler. `cantilever book --only` reuses a scene's previous
 //!   output only when its recorded fingerprint equals this build's.
 //! - `published.rs`: the committed snapshots of the published key numbers
-//!   (`tests/snapshots/published__book-*.snap`), for `cantilever diff … published`.
+//!   (`tests/snapshots/published__book-*.snap`) and their full-precision records
+//!   (`*.record.json`), for `cantilever diff … published`.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
@@ -231,8 +232,9 @@ fn published_snapshots() -> String {
         .unwrap_or_default();
     names.sort();
     let mut out = String::from(
-        "/// (scene, committed snapshot of its published key numbers).\n\
-         pub const PUBLISHED_SNAPSHOTS: &[(&str, &str)] = &[\n",
+        "/// (scene, committed snapshot of its published key numbers, its full-precision\n\
+         /// record or \"\" when it has none).\n\
+         pub const PUBLISHED_SNAPSHOTS: &[(&str, &str, &str)] = &[\n",
     );
     for path in names {
         let file = path.file_name().unwrap_or_default().to_string_lossy();
@@ -245,9 +247,14 @@ fn published_snapshots() -> String {
         let Ok(absolute) = std::fs::canonicalize(&path) else {
             continue;
         };
+        let record = dir.join(format!("published__book-{scene}.record.json"));
+        let record = match std::fs::canonicalize(&record) {
+            Ok(r) => format!("include_str!({:?})", r.to_string_lossy()),
+            Err(_) => "\"\"".to_string(),
+        };
         let _ = writeln!(
             out,
-            "    ({scene:?}, include_str!({:?})),",
+            "    ({scene:?}, include_str!({:?}), {record}),",
             absolute.to_string_lossy()
         );
     }

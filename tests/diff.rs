@@ -254,9 +254,11 @@ fn folders_of_outputs_and_snapshots_are_read_scene_by_scene() {
     assert_eq!(code, 0, "{out}{err}");
     assert!(out.contains("6 numbers compared: 0 beyond"), "{out}");
     // a scene's folder, and one scene against a whole set
+    // (that scene alone: the set's other scenes are neither added nor removed)
     let (code, out, _) = cantilever(&["diff", "a/fig4", "b"], &dir);
     assert_eq!(code, 0);
-    assert!(out.contains("scenes only in NEW: fig6"), "{out}");
+    assert!(out.contains("compared scene fig4 alone"), "{out}");
+    assert!(!out.contains("scenes only in"), "{out}");
 }
 
 #[test]
@@ -319,4 +321,36 @@ fn a_json_document_reads_back_to_the_same_key_numbers() {
     let back = diff::from_document(&doc).unwrap();
     assert_eq!(back.numbers, k);
     assert_eq!(back.resolution.as_deref(), Some("book"));
+}
+
+/// At full precision: two recomputations whose printed values differ in the last digit (the
+/// rounding fell either side) but whose computed values agree within their reproducibility
+/// tolerance are the same number; a move beyond that tolerance but within the ± is "within",
+/// as before.
+#[test]
+fn full_precision_values_within_their_reproducibility_are_unchanged() {
+    let dir = scratch("full-precision");
+    let basis = "certified switching times, polished to round-off";
+    let one = |x: f64| {
+        let mut k = KeyNumbers::default();
+        k.cited("contact_start", x, 6, Uncertainty::new(1e-12, basis), "T");
+        k
+    };
+    // just above the midpoint rounds to 0.442355, 4e-13 lower to 0.442354
+    let x = 0.442_354_500_000_1;
+    let (a, b) = (one(x), one(x - 4e-13));
+    assert_ne!(
+        a.get("contact_start").unwrap().to_string(),
+        b.get("contact_start").unwrap().to_string(),
+        "the printed values differ"
+    );
+    write_pair(&dir, &a, &b);
+    let (code, out, err) = cantilever(&["diff", "old.json", "new.json"], &dir);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(out.contains("1 unchanged"), "{out}");
+    // 1e-9 of the value: beyond the computation's precision, within the printed ±
+    write_pair(&dir, &a, &one(x * (1.0 + 1e-9)));
+    let (code, out, err) = cantilever(&["diff", "old.json", "new.json"], &dir);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(out.contains("moved within its uncertainty (1)"), "{out}");
 }

@@ -6,27 +6,14 @@
 use impacting_cantilever::error::Error;
 use impacting_cantilever::results::scenes;
 use impacting_cantilever::results::settings::SettingKind;
-use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::path::Path;
+
+#[path = "common/cli.rs"]
+mod cli;
+use cli::scratch;
 
 fn cantilever(args: &[&str], dir: &Path) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_cantilever"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("cantilever-whatif-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    cli::cantilever_in(dir, args)
 }
 
 /// Each settable parameter takes both ends of its range (the scene's parameters read back

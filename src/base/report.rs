@@ -47,8 +47,8 @@ pub struct Cited {
     /// The unit or scale ("" for a pure number).
     pub unit: String,
     /// The method's own uncertainty of `computed`, before any widening by the rounding
-    /// (what "the computed value is good to …" states; read back from a file: as
-    /// `uncertainty`). Not part of a value's identity.
+    /// (what "the computed value is good to …" states; read back from a file that does not
+    /// record it: 0, [`NOT_RECORDED`]). Not part of a value's identity.
     #[serde(skip)]
     pub method: Uncertainty,
 }
@@ -104,6 +104,9 @@ impl Cited {
         }
     }
 }
+
+/// The basis of [`Cited::method`] read back from a file that does not record it.
+pub const NOT_RECORDED: &str = "not recorded";
 
 /// One key number.
 #[derive(Debug, Clone, PartialEq)]
@@ -393,6 +396,8 @@ impl KeyNumbers {
                     "uncertainties": v.iter().map(|c| c.uncertainty.value).collect::<Vec<_>>(),
                     "uncertainty_basis": v.first().map(|c| c.uncertainty.basis.clone()),
                     "digits": v.iter().map(|c| c.digits).collect::<Vec<_>>(),
+                    "good_to": v.iter().map(|c| c.method.value).collect::<Vec<_>>(),
+                    "good_to_basis": v.first().map(|c| c.method.basis.clone()),
                     "unit": v.first().map(|c| c.unit.clone()),
                     "unit_meaning": v.first().and_then(|c| unit_meaning(&c.unit)),
                 }),
@@ -404,6 +409,8 @@ impl KeyNumbers {
                     "unit": c.unit,
                     "unit_meaning": unit_meaning(&c.unit),
                     "digits": c.digits,
+                    "good_to": c.method.value,
+                    "good_to_basis": c.method.basis,
                 }),
             };
             m.insert(k.clone(), v);
@@ -428,6 +435,11 @@ impl KeyNumbers {
             let bad = |what: &str| format!("key number \"{key}\": {what}");
             let text = |name: &str| entry.get(name).and_then(Value::as_str).unwrap_or("");
             let float = |v: &Value| v.as_f64().filter(|x| x.is_finite());
+            // the method's own uncertainty, where the file records it
+            let method = |good_to: Option<&Value>| match good_to.and_then(float) {
+                Some(g) if g >= 0.0 => Uncertainty::new(g, text("good_to_basis")),
+                _ => Uncertainty::new(0.0, NOT_RECORDED),
+            };
             let value = if let Some(values) = entry.get("values") {
                 let values = values
                     .as_array()
@@ -457,7 +469,7 @@ impl KeyNumbers {
                         digits: d,
                         uncertainty: Uncertainty::new(u, text("uncertainty_basis")),
                         unit: text("unit").to_string(),
-                        method: Uncertainty::new(u, text("uncertainty_basis")),
+                        method: method(entry.get("good_to").and_then(|g| g.get(i))),
                     });
                 }
                 KeyValue::Series(cited)
@@ -473,7 +485,7 @@ impl KeyNumbers {
                         },
                         uncertainty: Uncertainty::new(u, text("uncertainty_basis")),
                         unit: text("unit").to_string(),
-                        method: Uncertainty::new(u, text("uncertainty_basis")),
+                        method: method(entry.get("good_to")),
                     }),
                     _ => return Err(bad("value and uncertainty must be finite, ± ≥ 0")),
                 }
@@ -608,7 +620,7 @@ fn cited_from_text(value: &str, uncertainty: Option<&str>, unit: &str) -> Option
         digits,
         uncertainty: Uncertainty::new(u, basis),
         unit: unit.to_string(),
-        method: Uncertainty::new(u, basis),
+        method: Uncertainty::new(0.0, NOT_RECORDED),
     })
 }
 

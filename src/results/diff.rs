@@ -25,15 +25,44 @@ include!(concat!(env!("OUT_DIR"), "/published.rs"));
 pub fn published() -> Result<Vec<SceneKeys>, String> {
     PUBLISHED_SNAPSHOTS
         .iter()
-        .map(|(scene, text)| {
+        .map(|(scene, text, record)| {
+            let mut numbers = KeyNumbers::from_snapshot(text)
+                .map_err(|e| format!("published snapshot of {scene}: {e}"))?;
+            if !record.is_empty() {
+                let record: serde_json::Value = serde_json::from_str(record)
+                    .map_err(|e| format!("published record of {scene}: {e}"))?;
+                with_record(&mut numbers, &record);
+            }
             Ok(SceneKeys {
                 scene: scene.to_string(),
                 resolution: Some("book".into()),
-                numbers: KeyNumbers::from_snapshot(text)
-                    .map_err(|e| format!("published snapshot of {scene}: {e}"))?,
+                numbers,
             })
         })
         .collect()
+}
+
+/// The printed numbers of a snapshot with their full-precision values and the method's
+/// own uncertainties from the scene's record (results::record).
+fn with_record(numbers: &mut KeyNumbers, record: &serde_json::Value) {
+    let entries = &record["numbers"];
+    let fill = |c: &mut Cited, e: &serde_json::Value| {
+        if let Some((computed, method)) = crate::results::record::read_entry(e) {
+            c.computed = computed;
+            c.method = method;
+        }
+    };
+    for (key, v) in &mut numbers.0 {
+        match v {
+            KeyValue::Float(c) => fill(c, &entries[key.as_str()]),
+            KeyValue::Series(s) => {
+                for (i, c) in s.iter_mut().enumerate() {
+                    fill(c, &entries[key.as_str()][i]);
+                }
+            }
+            _ => {}
+        }
+    }
 }
 
 /// A scene's key numbers from its `key_numbers.json` document (what `cantilever scene`
@@ -279,8 +308,20 @@ pub fn compare_values(o: &KeyValue, n: &KeyValue) -> Change {
         if o.unit != n.unit {
             return Change::UnitChanged;
         }
-        let (moved, allowed) = moved_allowed(o, n);
-        if moved == 0.0 {
+        let (printed_move, allowed) = moved_allowed(o, n);
+        // At full precision (both sides record the computed value and the method's own
+        // uncertainty): unchanged means reproduced within the reproducibility tolerance
+        // (results::record), whatever the printing; otherwise, as printed.
+        let recorded = |c: &Cited| c.method.basis != crate::base::report::NOT_RECORDED;
+        let (moved, unchanged) = if recorded(o) && recorded(n) {
+            let moved = (n.computed - o.computed).abs();
+            let tolerance =
+                crate::results::record::tolerance(o).max(crate::results::record::tolerance(n));
+            (moved, moved <= tolerance)
+        } else {
+            (printed_move, printed_move == 0.0)
+        };
+        if unchanged {
             Change::Unchanged
         } else if moved <= allowed {
             Change::Within { moved, allowed }

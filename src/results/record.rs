@@ -23,7 +23,7 @@
 //! of the model or the engine that moves a number by 1e-9 of itself fails the check of
 //! every number computed to better than that.
 
-use crate::base::report::{Cited, KeyNumbers, KeyValue};
+use crate::base::report::{Cited, KeyNumbers, KeyValue, Uncertainty};
 use serde_json::{json, Map, Value};
 
 /// The relative allowance for the order of floating-point operations on other platforms and
@@ -32,6 +32,15 @@ pub const PLATFORM_ALLOWANCE: f64 = 1e-10;
 
 /// The record's format.
 pub const FORMAT: &str = "impacting-cantilever published record v1";
+
+/// A float's full-precision value and the method's own uncertainty, from its record entry
+/// (`None` when the entry is not a float's).
+pub fn read_entry(e: &Value) -> Option<(f64, Uncertainty)> {
+    let computed = e["computed"].as_f64()?;
+    let good_to = e["good_to"].as_f64()?;
+    let basis = e["good_to_basis"].as_str()?;
+    Some((computed, Uncertainty::new(good_to, basis)))
+}
 
 /// Which part of a number's stated uncertainty a recomputation can change.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -94,6 +103,8 @@ fn entry(c: &Cited) -> Value {
         "computed": c.computed,
         "tolerance": tolerance(c),
         "part": part(&c.method.basis).as_str(),
+        "good_to": c.method.value,
+        "good_to_basis": c.method.basis,
     })
 }
 
@@ -186,7 +197,6 @@ pub fn check(record: &Value, fresh: &KeyNumbers) -> Vec<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::base::report::Uncertainty;
 
     fn numbers(x: f64, good_to: f64, basis: &str) -> KeyNumbers {
         let mut k = KeyNumbers::default();
