@@ -83,7 +83,7 @@ fn interpolate(a: (f64, f64), b: (f64, f64)) -> f64 {
 
 /// Where the grazing lies: the grazing distance is positive on both sides and 0 at the
 /// grazing, so it is interpolated as +g_a → −g_b.
-fn grazing_location(a: &BranchPoint, b: &BranchPoint) -> f64 {
+pub(crate) fn grazing_location(a: &BranchPoint, b: &BranchPoint) -> f64 {
     let g = |p: &BranchPoint| p.shape.grazing_distance.unwrap_or(0.0);
     interpolate((a.parameter, g(a)), (b.parameter, -g(b)))
 }

@@ -490,7 +490,12 @@ pub fn continue_branch(
             }
         }
     };
-    let bifurcations = detect::bifurcations(&points);
+    let mut bifurcations = detect::bifurcations(&points);
+    for b in &mut bifurcations {
+        if b.kind == detect::BifurcationKind::Grazing {
+            narrow_grazing(family, &points[b.index], &points[b.index + 1], m, b)?;
+        }
+    }
     Ok(Branch {
         period_m: m,
         points,
@@ -498,6 +503,54 @@ pub fn continue_branch(
         end,
         parent: None,
     })
+}
+
+/// Bisections of a grazing's bracket: its relative width falls below this, or the bracket
+/// stops narrowing (an orbit between cannot be polished, or has a third signature).
+const GRAZING_WIDTH: f64 = 1e-7;
+
+/// Narrows the bracket of a grazing between branch points `a` and `b` (their contact
+/// counts differ) by bisection in ln p: the orbit at the midpoint, polished by shooting
+/// from the states interpolated between the two, takes the side whose count it has. The
+/// grazing is then interpolated in the narrow bracket. Continuation steps alone left
+/// brackets ~2 % wide; a grazing placed by interpolation in one was 0.56 % from where orbits
+/// on both sides put it.
+fn narrow_grazing(
+    family: &Family,
+    a: &BranchPoint,
+    b: &BranchPoint,
+    m: u64,
+    bif: &mut detect::Bifurcation,
+) -> Result<(), Error> {
+    let (mut lo, mut hi) = (a.clone(), b.clone());
+    for _ in 0..60 {
+        let (ua, ub) = (lo.parameter.ln(), hi.parameter.ln());
+        if (ub - ua).abs() <= GRAZING_WIDTH || lo.impacts_n == hi.impacts_n {
+            break;
+        }
+        let u = 0.5 * (ua + ub);
+        let x = DVector::from_iterator(
+            lo.state.len(),
+            lo.state.iter().zip(&hi.state).map(|(p, q)| 0.5 * (p + q)),
+        );
+        let mid = match polish(family, &x, u, m, 0.5 * (lo.tangent_u + hi.tangent_u)) {
+            Ok(Some(mid)) => mid,
+            // an orbit that cannot be polished, or a run the engine refuses, between the
+            // two: the bracket stays where it is
+            Ok(None) | Err(Error::Invariant(_) | Error::Flow(_) | Error::Chatter(_)) => break,
+            Err(e) => return Err(e),
+        };
+        if mid.impacts_n == lo.impacts_n {
+            lo = mid;
+        } else if mid.impacts_n == hi.impacts_n {
+            hi = mid;
+        } else {
+            break;
+        }
+    }
+    bif.parameter = detect::grazing_location(&lo, &hi);
+    bif.between = (lo.parameter, hi.parameter);
+    Ok(())
 }
 
 /// Whether a period-m orbit state is also, to 1e-3, a fixed point of P^half: the doubled

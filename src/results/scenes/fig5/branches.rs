@@ -238,10 +238,10 @@ pub(super) fn key_numbers(k: &mut KeyNumbers, d: &Fig5Data) {
                 k.cited(
                     name,
                     f.parameter,
-                    4,
+                    8,
                     Uncertainty::new(
                         (f.parameter - lo).max(hi - f.parameter),
-                        format!("between adjacent continuation points {lo:.4} and {hi:.4} k₁ (grazing distance interpolated to 0)"),
+                        format!("between orbits at {lo:.7} and {hi:.7} k₁ with the two contact counts (the continuation's bracket bisected; grazing distance interpolated to 0)"),
                     ),
                     "k₁",
                 );
