@@ -120,6 +120,14 @@ pub const SCENE_FILES: [&str; 5] = [
 /// # Errors
 /// [`ParameterError`] naming `flag` and the file that would be overwritten.
 pub fn check_set(flag: &str, dir: &Path, names: &[&str]) -> Result<(), ParameterError> {
+    // a transaction a killed run left here is finished or rolled back first: its half-
+    // swapped files are the program's own, not obstacles
+    if dir.join(JOURNAL).is_file() {
+        if let Ok(_lock) = files::OutputLock::acquire(&dir.join(LOCK)) {
+            recover(dir);
+            remove_orphans(dir);
+        }
+    }
     match obstacle(dir, names) {
         Some(why) => Err(ParameterError::new(
             flag,
@@ -151,6 +159,16 @@ fn temporary(dir: &Path, name: &str, pid: u32, kind: &str) -> PathBuf {
 /// not one the program wrote (nothing is written then), or a file cannot be written or
 /// renamed (the old set is restored).
 pub fn write_set(dir: &Path, set: &[(String, String)]) -> Result<(), Error> {
+    let created = !dir.exists();
+    let written = write_set_in(dir, set);
+    if written.is_err() && created {
+        // a folder this run made for a set it could not write (removed only when empty)
+        let _ = std::fs::remove_dir(dir);
+    }
+    written
+}
+
+fn write_set_in(dir: &Path, set: &[(String, String)]) -> Result<(), Error> {
     std::fs::create_dir_all(dir).map_err(io(dir))?;
     let dir = std::fs::canonicalize(dir).map_err(io(dir))?;
     if !dir.is_dir() {
@@ -161,6 +179,7 @@ pub fn write_set(dir: &Path, set: &[(String, String)]) -> Result<(), Error> {
     }
     let _lock = files::OutputLock::acquire(&dir.join(LOCK))?;
     recover(&dir);
+    remove_orphans(&dir);
     let names: Vec<&str> = set.iter().map(|(n, _)| n.as_str()).collect();
     if let Some(why) = obstacle(&dir, &names) {
         return Err(Error::Io {
@@ -308,6 +327,34 @@ fn recover(dir: &Path) {
     let _ = std::fs::remove_file(dir.join(JOURNAL));
 }
 
+/// Removes the temporaries of writes killed before their journal existed
+/// (`.NAME.cantilever-PID.tmp`, NAME a file of the manifest's or the manifest itself): with
+/// the folder's lock held, no write is under way, and a temporary no journal names is an
+/// orphan. Only names of this program's temporaries, for its own files, are touched.
+fn remove_orphans(dir: &Path) {
+    let listed = manifest(dir);
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for e in entries.flatten() {
+        let name = e.file_name().to_string_lossy().into_owned();
+        let Some(rest) = name.strip_prefix('.') else {
+            continue;
+        };
+        let Some((base, tail)) = rest.rsplit_once(".cantilever-") else {
+            continue;
+        };
+        let pid_tmp = tail
+            .strip_suffix(".tmp")
+            .is_some_and(|pid| !pid.is_empty() && pid.bytes().all(|b| b.is_ascii_digit()));
+        let ours = base == MANIFEST || listed.contains_key(base) || SCENE_FILES.contains(&base);
+        let regular = e.file_type().is_ok_and(|t| t.is_file());
+        if pid_tmp && ours && regular {
+            let _ = std::fs::remove_file(e.path());
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -396,5 +443,42 @@ mod tests {
         assert_eq!(std::fs::read_to_string(d.join("data.json")).unwrap(), "old");
         assert!(!d.join(JOURNAL).exists());
         assert!(proven(&d, "data.json", &manifest(&d)));
+    }
+
+    /// The check before the work finishes a killed transaction first: a run killed
+    /// mid-swap left a new data.json the old manifest does not prove, and every rerun was
+    /// refused ("not a file cantilever wrote there") — found by an adversarial rerun with
+    /// a SIGKILL injected at the ninth rename.
+    #[test]
+    fn the_check_before_the_work_recovers_a_killed_swap_and_removes_orphans() {
+        let d = scratch("killed-swap");
+        write_set(&d, &set("old")).unwrap();
+        let pid = 4_000_000_001u32;
+        std::fs::rename(d.join("data.json"), temporary(&d, "data.json", pid, "old")).unwrap();
+        std::fs::write(d.join("data.json"), "half").unwrap();
+        std::fs::write(temporary(&d, "plot.svg", pid, "tmp"), "new").unwrap();
+        let journal = serde_json::json!({
+            "pid": pid, "files": ["plot.svg", "data.json"], "had": ["plot.svg", "data.json"],
+            "stale": [], "manifest": "0000000000000000-0",
+        });
+        std::fs::write(d.join(JOURNAL), journal.to_string()).unwrap();
+        check_set("--out", &d, &["plot.svg", "data.json"]).unwrap();
+        assert_eq!(std::fs::read_to_string(d.join("data.json")).unwrap(), "old");
+        assert_eq!(listing(&d), [MANIFEST, "data.json", "plot.svg"]);
+        // temporaries of a write killed before its journal: removed by the next write,
+        // a user's file of a similar name kept
+        std::fs::write(temporary(&d, "data.json", 123, "tmp"), "orphan").unwrap();
+        std::fs::write(temporary(&d, MANIFEST, 123, "tmp"), "orphan").unwrap();
+        std::fs::write(d.join(".notes.cantilever-draft.tmp"), "mine").unwrap();
+        write_set(&d, &set("new")).unwrap();
+        assert_eq!(
+            listing(&d),
+            [
+                MANIFEST,
+                ".notes.cantilever-draft.tmp",
+                "data.json",
+                "plot.svg"
+            ]
+        );
     }
 }

@@ -318,10 +318,10 @@ macro_rules! errln {
     }};
 }
 
-/// On SIGINT or SIGTERM, deletes the temporary files of any write under way and exits
-/// with 128 + the signal, as a shell expects.
+/// On SIGINT, SIGTERM or SIGHUP (a closed terminal), deletes the temporary files of any
+/// write under way and exits with 128 + the signal, as a shell expects.
 fn clean_up_on_signals() {
-    use signal_hook::consts::{SIGINT, SIGTERM, SIGXFSZ};
+    use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM, SIGXFSZ};
     // A file size limit (`ulimit -f`) would kill the run mid-write by default, before its
     // temporaries are removed; with the signal caught, the write fails with an error
     // instead (EFBIG) and the old output stays.
@@ -329,7 +329,7 @@ fn clean_up_on_signals() {
         SIGXFSZ,
         std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false)),
     );
-    if let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGINT, SIGTERM]) {
+    if let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP]) {
         std::thread::spawn(move || {
             if let Some(signal) = signals.forever().next() {
                 impacting_cantilever::results::files::remove_temporaries();

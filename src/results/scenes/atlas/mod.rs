@@ -268,10 +268,15 @@ impl Scene for Atlas {
         let coexist = cells(d).filter(|c| c.attractors.len() > 1).count();
         let (checked, agree, _, _) = check_summary(d);
         let pct = |x: usize| 100.0 * x as f64 / all.max(1) as f64;
+        // the truncation as the atlas was computed (a merged or custom atlas may fix N)
+        let with = match d.params.modes {
+            crate::analysis::atlas::ModesRule::Fixed(n) => format!("With N = {n} at every k"),
+            _ => "With N matched to k".to_string(),
+        };
         Verdict {
             outcome: Outcome::Extension,
             evidence: format!(
-                "With N matched to k, from rest the beam taps more than once per forcing period in {multi} of the {all} cells ({:.0} %); at least {coexist} ({:.1} %, rounded down: a lower bound) have two or more coexisting stable orbits; with 10 more modes the orbit from rest is the same (m, n), its entry velocities within 1 %, in {agree} of {checked} checked cells",
+                "{with}, from rest the beam taps more than once per forcing period in {multi} of the {all} cells ({:.0} %); at least {coexist} ({:.1} %, rounded down: a lower bound) have two or more coexisting stable orbits; with 10 more modes the orbit from rest is the same (m, n), its entry velocities within 1 %, in {agree} of {checked} checked cells",
                 pct(multi),
                 (pct(coexist) * 10.0).floor() / 10.0
             ),

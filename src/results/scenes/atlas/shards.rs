@@ -31,8 +31,33 @@ pub fn read_shard(path: &Path) -> Result<Partial, ParameterError> {
     if file.metadata().is_ok_and(|m| m.is_dir()) {
         return Err(bad("it is a directory".into()));
     }
-    let reader = std::io::BufReader::new(std::io::Read::take(file, MAX_SHARD_BYTES));
-    serde_json::from_reader(reader).map_err(|e| bad(e.to_string()))
+    let mut counted = Counted {
+        inner: std::io::Read::take(file, MAX_SHARD_BYTES),
+        bytes: 0,
+    };
+    let parsed = serde_json::from_reader(std::io::BufReader::new(&mut counted));
+    parsed.map_err(|e| {
+        if counted.bytes >= MAX_SHARD_BYTES {
+            // the cap, not the end of the file (an endless FIFO): say so
+            bad(format!("at most {} GiB; it is longer", MAX_SHARD_BYTES >> 30))
+        } else {
+            bad(e.to_string())
+        }
+    })
+}
+
+/// A reader that counts the bytes it has given.
+struct Counted<R> {
+    inner: R,
+    bytes: u64,
+}
+
+impl<R: std::io::Read> std::io::Read for Counted<R> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = self.inner.read(buf)?;
+        self.bytes += n as u64;
+        Ok(n)
+    }
 }
 
 /// A shard from its JSON text (`which` names it in messages).
