@@ -260,6 +260,11 @@ pub fn build_only(
     // mdBook empties its build folder first: built beside it and swapped in whole, so an
     // interrupted build leaves the previous book, not a few pages of the new one
     let pid = std::process::id();
+    // absolute: mdBook takes a relative build folder relative to the book's root, where a
+    // relative `root` ("book", the main job's) would put the pages in book/book/… and swap
+    // in a folder holding only the fonts
+    let root = &std::fs::canonicalize(root)
+        .with_context(|| format!("finding the book at {}", root.display()))?;
     let fresh = root.join(format!(".build.cantilever-{pid}.tmp"));
     let old = root.join(format!(".build.cantilever-{pid}.old"));
     let _ = std::fs::remove_dir_all(&fresh);
