@@ -170,6 +170,35 @@ fn rebuilding_one_scene_reuses_only_current_outputs(tmp: &Path) {
     );
     let unknown = build_only(tmp, Resolution::Test, Some(&["fig99".to_string()]), &Silent);
     assert!(unknown.is_err());
+    book_builds_whole_from_a_relative_root(tmp);
+}
+
+/// The main job names its root relatively ("book"), and mdBook takes a relative build
+/// folder relative to the root: a build from a relative root once swapped in a folder
+/// holding only the fonts. Every chapter's page must be in the swapped-in build folder.
+fn book_builds_whole_from_a_relative_root(tmp: &Path) {
+    use impacting_cantilever::results::book::build_only;
+    use impacting_cantilever::results::scene::{Resolution, Silent};
+    std::fs::remove_dir_all(tmp.join("build")).unwrap();
+    // the other test of this binary reads absolute paths only, so moving the process's
+    // current folder for this call cannot disturb it
+    let was = std::env::current_dir().unwrap();
+    std::env::set_current_dir(tmp.parent().unwrap()).unwrap();
+    let relative = Path::new(tmp.file_name().unwrap());
+    let built = build_only(relative, Resolution::Test, Some(&[]), &Silent);
+    std::env::set_current_dir(was).unwrap();
+    built.expect("book builds from a relative root");
+    for chapter in chapters_of_summary(&tmp.join("src/SUMMARY.md")) {
+        assert!(
+            tmp.join(format!("build/{chapter}.html")).is_file(),
+            "{chapter}.html missing from a build with a relative root"
+        );
+    }
+    assert!(tmp.join("build/generated/fig2/plot.svg").is_file());
+    assert!(
+        !tmp.join(tmp.file_name().unwrap()).exists(),
+        "pages built in a nested folder"
+    );
 }
 
 /// The chapters speak to readers of the paper: no stray control characters (a `\a` of
