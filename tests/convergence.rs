@@ -135,7 +135,38 @@ fn study_recovers_a_power_law_and_answers_on_and_beyond_the_scan() {
         Needed::Beyond { estimate } => assert!((estimate - 1000.0).abs() < 1.0, "{estimate}"),
         other => panic!("{other:?}"),
     }
+    // 1e-5: the limit's Richardson uncertainty (4.8e-6) is more than a quarter of it, so the
+    // scanned values cannot confirm N*; the order puts it at 64·(64⁻³/1e-5)^⅓ = 46.4, inside
+    // the scan, and it is said to be unconfirmed there, not "beyond the scan"
+    match s.needed(1e-5) {
+        Needed::Unconfirmed { estimate } => assert!((estimate - 46.4).abs() < 0.1, "{estimate}"),
+        other => panic!("{other:?}"),
+    }
+    assert!(s
+        .needed(1e-5)
+        .to_string()
+        .contains("not confirmed by the scan"));
+    assert!(s.needed(1e-9).to_string().contains("beyond the scan"));
     assert!(Study::new(vec![1, 2, 3], vec![1.0, 1.0, 1.0], 1.0).is_err());
+}
+
+/// At k = 10⁵k₁, ζ₁ = 0.9, to 1e-6 the exit velocity's limit is known to ± 8e-7, too coarse
+/// for the tolerance; its order puts N* at about 175, inside the scan to N = 200, which was
+/// printed as if estimated beyond the scan.
+#[test]
+fn modes_needed_inside_the_scan_but_unconfirmed_says_so() {
+    let m = convergence::modes_needed(1e5, 1e-6, 0.9).unwrap();
+    match m.needed {
+        Needed::Unconfirmed { estimate } => {
+            assert!(estimate <= m.largest_scanned as f64, "{estimate}")
+        }
+        other => panic!("{other:?}"),
+    }
+    let m = convergence::modes_needed(1e5, 1e-6, 0.01).unwrap();
+    match m.needed {
+        Needed::Beyond { estimate } => assert!(estimate > m.largest_scanned as f64, "{estimate}"),
+        other => panic!("{other:?}"),
+    }
 }
 
 /// Heavy material damping (ζ₁ = 0.7 … 0.9 at k = 1000k₁) was refused outright: at N = 200

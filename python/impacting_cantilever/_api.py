@@ -259,6 +259,7 @@ def modes_needed(
     needed = d["needed"]
     scanned = needed.get("Scanned") if isinstance(needed, dict) else None
     beyond = needed.get("Beyond") if isinstance(needed, dict) else None
+    unconfirmed = needed.get("Unconfirmed") if isinstance(needed, dict) else None
     studies = {
         name: Study(
             sizes=np.array(s["sizes"], dtype=np.int64),
@@ -275,7 +276,8 @@ def modes_needed(
         stop_stiffness=d["stop_stiffness_over_k1"],
         tolerance=d["tolerance"],
         needed=scanned,
-        estimate=beyond["estimate"] if beyond else None,
+        estimate=(beyond or unconfirmed or {}).get("estimate"),
+        confirmed=unconfirmed is None,
         hardest=d["hardest"],
         studies=studies,
         criterion=d["criterion"],

@@ -332,8 +332,12 @@ class ModesNeeded:
     tolerance: float
     #: N* found in the scan (every scanned N from it on meets the tolerance), else None.
     needed: Optional[int]
-    #: Beyond the scan: the power-law estimate of N* from the observed order, else None.
+    #: The power-law estimate of N* from the observed order when the scan does not settle
+    #: N* (beyond the scan, or inside it but unconfirmed), else None.
     estimate: Optional[float]
+    #: False when the estimate lies inside the scan but the N → ∞ limit is too uncertain to
+    #: confirm it against the scanned values.
+    confirmed: bool
     #: The observable that needs the most modes.
     hardest: str
     studies: dict[str, Study]
@@ -349,7 +353,15 @@ class ModesNeeded:
         n = (
             str(self.needed)
             if self.needed is not None
-            else (f"≈ {self.estimate:.3g} (beyond the scan)" if self.estimate else "unresolved")
+            else (
+                (
+                    f"≈ {self.estimate:.3g} (beyond the scan)"
+                    if self.confirmed
+                    else f"≈ {self.estimate:.3g} (estimated, unconfirmed by the scan)"
+                )
+                if self.estimate
+                else "unresolved"
+            )
         )
         return (
             f"ModesNeeded(N* = {n} for {self.tolerance:g} at k = {self.stop_stiffness:g}k₁, "

@@ -334,7 +334,11 @@ impl Study {
     /// N* is estimated from the error model e(N) = e(N_max)(N_max/N)^p with the observed
     /// order p and the estimated error of the finest value ([`Self::power_law_needed`]).
     pub fn needed(&self, tol: f64) -> Needed {
+        let finest = self.sizes.last().copied().unwrap_or(0) as f64;
         let estimate = || match self.power_law_needed(tol) {
+            // an estimate inside the scan means the values would meet `tol` there, but the
+            // limit is too uncertain to confirm it against them
+            Some(estimate) if estimate.ceil() <= finest => Needed::Unconfirmed { estimate },
             Some(estimate) => Needed::Beyond { estimate },
             None => Needed::Unresolved,
         };
@@ -369,6 +373,13 @@ pub enum Needed {
         /// The estimated N*.
         estimate: f64,
     },
+    /// Inside the scan by the power-law estimate from the observed order, but not confirmed
+    /// by the scanned values: the N → ∞ limit is known only to more than a quarter of the
+    /// tolerance, too coarse to check the values against it.
+    Unconfirmed {
+        /// The estimated N*.
+        estimate: f64,
+    },
     /// The limit is not known well enough to judge this tolerance.
     Unresolved,
 }
@@ -378,7 +389,7 @@ impl Needed {
     pub fn modes(&self) -> f64 {
         match self {
             Self::Scanned(n) => *n as f64,
-            Self::Beyond { estimate } => *estimate,
+            Self::Beyond { estimate } | Self::Unconfirmed { estimate } => *estimate,
             Self::Unresolved => f64::INFINITY,
         }
     }
@@ -400,7 +411,16 @@ impl std::fmt::Display for Needed {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             Self::Scanned(n) => write!(f, "{n}"),
-            Self::Beyond { estimate } => write!(f, "≈ {:.0} (estimated)", estimate.ceil()),
+            Self::Beyond { estimate } => {
+                write!(f, "≈ {:.0} (estimated beyond the scan)", estimate.ceil())
+            }
+            Self::Unconfirmed { estimate } => {
+                write!(
+                    f,
+                    "≈ {:.0} (estimated, not confirmed by the scan)",
+                    estimate.ceil()
+                )
+            }
             Self::Unresolved => write!(f, "unresolved"),
         }
     }
@@ -446,7 +466,11 @@ pub fn matched_modes(
     let m = modes_needed(k_over_k1, tolerance, zeta1)?;
     let n = match m.needed {
         Needed::Scanned(n) => n,
-        Needed::Beyond { estimate } if estimate.ceil() <= max as f64 => estimate.ceil() as usize,
+        Needed::Beyond { estimate } | Needed::Unconfirmed { estimate }
+            if estimate.ceil() <= max as f64 =>
+        {
+            estimate.ceil() as usize
+        }
         _ => {
             return Err(Error::Unsupported(format!(
                 "stiffness matching at k = {}k₁ to {tolerance:e} needs more than the {max} \

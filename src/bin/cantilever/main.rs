@@ -537,7 +537,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
                     json_text("modes-needed", serde_json::to_value(&m).unwrap_or_default())
                 );
             } else {
-                // "N* = 12", "N* ≈ 638 (estimated)": one relation sign, not "= ≈"
+                // "N* = 12", "N* ≈ 638 (estimated …)": one relation sign, not "= ≈"
                 let needed = m.needed.to_string();
                 let relation = if needed.starts_with('≈') { "" } else { "= " };
                 outln!("N* {relation}{needed} for relative accuracy {tolerance:e} at k = {stop_stiffness}k₁ (set by the {})", m.hardest);
@@ -554,6 +554,16 @@ fn run(cli: Cli) -> Result<(), Failure> {
                     m.criterion,
                     m.largest_scanned
                 );
+                if let convergence::Needed::Unconfirmed { .. } = m.needed {
+                    let by = m.studies.iter().find(|(n, _)| *n == m.hardest);
+                    if let Some((_, s)) = by {
+                        outln!(
+                            "  the order of convergence puts N* inside the scan, but the {}'s limit is known only to ± {:.1e} relative, more than a quarter of {tolerance:e}: too coarse to confirm N* from the scanned values",
+                            m.hardest,
+                            s.uncertainty / s.scale
+                        );
+                    }
+                }
                 if let Some(why) = &m.scan_end {
                     outln!("  the scan ends at N = {}: {why}", m.largest_scanned);
                 }

@@ -134,7 +134,9 @@ fn needed<DB: DrawingBackend>(
             .iter()
             .filter_map(|a| match a.needed.iter().find(|n| n.0 == tol)?.1 {
                 Needed::Scanned(n) => Some((a.k_over_k1, n as f64, true)),
-                Needed::Beyond { estimate } => Some((a.k_over_k1, estimate, false)),
+                Needed::Beyond { estimate } | Needed::Unconfirmed { estimate } => {
+                    Some((a.k_over_k1, estimate, false))
+                }
                 Needed::Unresolved => None,
             })
             .collect();
