@@ -193,3 +193,74 @@ fn item_2_a_size_limit_fails_the_write_and_keeps_the_old_set() {
     assert_eq!(after, before);
     assert_eq!(listing(&d), ["set"]);
 }
+
+/// Runs a copy of the binary as user `nobody` in `dir` (None when this test is not run by
+/// root or the system has no `setpriv`: only root can take another user's part).
+fn as_nobody(dir: &Path, args: &[&str]) -> Option<(i32, String)> {
+    let root = std::fs::metadata(std::env::temp_dir().join("."))
+        .ok()
+        .and_then(|_| {
+            let probe = dir.join(".whoami");
+            std::fs::write(&probe, "").ok()?;
+            let uid = std::fs::metadata(&probe).ok()?.uid();
+            std::fs::remove_file(&probe).ok()?;
+            Some(uid == 0)
+        })
+        .unwrap_or(false);
+    if !root
+        || std::process::Command::new("setpriv")
+            .arg("--help")
+            .output()
+            .is_err()
+    {
+        eprintln!("not run as root with setpriv: the other-user case is left to the unit test");
+        return None;
+    }
+    // a copy nobody can run (the build folder may not be reachable for it)
+    let bin = dir.join("cantilever-copy");
+    if !bin.exists() {
+        std::fs::copy(env!("CARGO_BIN_EXE_cantilever"), &bin).unwrap();
+        std::fs::set_permissions(&bin, std::fs::Permissions::from_mode(0o755)).unwrap();
+        std::fs::set_permissions(dir, std::fs::Permissions::from_mode(0o755)).unwrap();
+    }
+    let out = std::process::Command::new("setpriv")
+        .args(["--reuid=65534", "--regid=65534", "--clear-groups"])
+        .arg(&bin)
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .unwrap();
+    Some((
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    ))
+}
+
+/// A folder another user may not write into, or a sticky folder (as /tmp) whose set another
+/// user owns: the swap would fail after the work (exit 1); refused before it (exit 2), the
+/// old set untouched.
+#[test]
+fn a_set_the_caller_may_not_replace_is_refused_before_the_work() {
+    let d = scratch("r4-sticky");
+    let (code, _, err) = cantilever_in(&d, &["scene", "fig2", "--out", "sticky"]);
+    assert_eq!(code, 0, "{err}");
+    let sticky = d.join("sticky");
+    std::fs::set_permissions(&sticky, std::fs::Permissions::from_mode(0o1777)).unwrap();
+    let before = listing(&sticky);
+    std::fs::create_dir(d.join("read-only")).unwrap();
+    for (out, why) in [
+        ("sticky", "sticky bit"),
+        ("read-only", "writable directory"),
+    ] {
+        let t = std::time::Instant::now();
+        // the atlas would take minutes: refused at once
+        let Some((code, err)) = as_nobody(&d, &["scene", "atlas", "--out", out]) else {
+            return;
+        };
+        assert_eq!(code, 2, "{out}: {err}");
+        assert!(err.contains(why), "{out}: {err}");
+        assert!(t.elapsed().as_secs_f64() < 20.0, "refused after the work");
+    }
+    assert_eq!(listing(&sticky), before);
+    assert_eq!(listing(&d.join("read-only")), Vec::<String>::new());
+}

@@ -104,6 +104,41 @@ fn obstacle(dir: &Path, names: &[&str]) -> Option<String> {
     })
 }
 
+/// Why a set cannot replace its old files in a folder with the sticky bit (mode +t, as
+/// /tmp): there only a file's owner, the folder's owner or root may rename or remove it, so
+/// a file of the set (or the manifest) that another user owns would stop the swap after the
+/// work. None: nothing stands in the way (no sticky bit, or the caller may replace them).
+fn sticky_obstacle(dir: &Path, names: &[&str]) -> Option<String> {
+    use std::os::unix::fs::MetadataExt;
+    let folder = std::fs::metadata(dir).ok()?;
+    if folder.mode() & 0o1000 == 0 {
+        return None;
+    }
+    // the caller's user is the owner of a file it creates (no need for a system call)
+    let probe = dir.join(format!(".cantilever-probe.{}", std::process::id()));
+    std::fs::write(&probe, b"").ok()?;
+    let me = std::fs::metadata(&probe).map(|m| m.uid());
+    let _ = std::fs::remove_file(&probe);
+    let me = me.ok()?;
+    names.iter().chain(&[MANIFEST]).find_map(|name| {
+        let path = dir.join(name);
+        let file = std::fs::symlink_metadata(&path).ok()?;
+        (!may_replace_in_sticky(me, folder.uid(), file.uid())).then(|| {
+            format!(
+                "{} belongs to another user, and the folder has the sticky bit: only its \
+                 owner, the folder's owner or root may replace it",
+                path.display()
+            )
+        })
+    })
+}
+
+/// The sticky bit's rule: user `me` may rename or remove a file owned by `file_owner` in a
+/// sticky folder owned by `folder_owner` (root may always; CAP_FOWNER is not consulted).
+fn may_replace_in_sticky(me: u32, folder_owner: u32, file_owner: u32) -> bool {
+    me == 0 || me == folder_owner || me == file_owner
+}
+
 /// The files every scene's set has (a scene may add tables).
 pub const SCENE_FILES: [&str; 5] = [
     "plot.svg",
@@ -128,14 +163,21 @@ pub fn check_set(flag: &str, dir: &Path, names: &[&str]) -> Result<(), Parameter
             remove_orphans(dir);
         }
     }
-    match obstacle(dir, names) {
-        Some(why) => Err(ParameterError::new(
+    if let Some(why) = obstacle(dir, names) {
+        return Err(ParameterError::new(
             flag,
             dir.display(),
             &format!("a folder whose files of these names cantilever wrote ({why})"),
-        )),
-        None => Ok(()),
+        ));
     }
+    if let Some(why) = sticky_obstacle(dir, names) {
+        return Err(ParameterError::new(
+            flag,
+            dir.display(),
+            &format!("a folder whose files of these names you may replace ({why})"),
+        ));
+    }
+    Ok(())
 }
 
 fn io(path: &Path) -> impl Fn(std::io::Error) -> Error + '_ {
@@ -480,5 +522,15 @@ mod tests {
                 "plot.svg"
             ]
         );
+    }
+
+    #[test]
+    fn the_sticky_bit_lets_only_owners_and_root_replace() {
+        // (me, folder owner, file owner)
+        assert!(may_replace_in_sticky(0, 1000, 1001));
+        assert!(may_replace_in_sticky(1000, 1000, 0));
+        assert!(may_replace_in_sticky(1000, 0, 1000));
+        assert!(!may_replace_in_sticky(1000, 0, 1001));
+        assert!(!may_replace_in_sticky(65534, 0, 0));
     }
 }

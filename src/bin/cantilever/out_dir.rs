@@ -40,27 +40,14 @@ pub fn writable_dir(dir: &std::path::Path) -> Result<(), ParameterError> {
             )));
         }
     }
-    // Probed beside `dir`, not inside it: the set is written into a sibling and swapped in,
-    // and a probe inside could meet another writer's swap (the folder renamed away under
-    // it, or the probe counted as a file of the folder's own). Inside only when the parent
-    // does not take files (then no set is swapped there: the files go in place).
-    let beside = |d: &std::path::Path| match d.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-        _ => std::path::PathBuf::from("."),
-    };
-    if exists {
-        probe_dir = beside(dir);
-    }
-    let probe_in = |d: &std::path::Path| {
-        let probe = d.join(format!(".cantilever-probe.{}", std::process::id()));
-        let r = std::fs::write(&probe, b"");
-        let _ = std::fs::remove_file(&probe);
-        r
-    };
-    match probe_in(&probe_dir) {
-        Ok(()) => {}
-        Err(_) if exists && probe_in(dir).is_ok() => {}
-        Err(e) => return Err(fail(format!("a writable directory ({e})"))),
+    // Probed inside an existing `dir`: the set's temporaries, lock and manifest are written
+    // there (the folder itself is never replaced), so a folder that takes no file — a
+    // read-only one in a writable parent — is refused now, not at the first write
+    let probe = probe_dir.join(format!(".cantilever-probe.{}", std::process::id()));
+    let written = std::fs::write(&probe, b"");
+    let _ = std::fs::remove_file(&probe);
+    if let Err(e) = written {
+        return Err(fail(format!("a writable directory ({e})")));
     }
     // the files a scene writes must be the program's own where they exist (a user's file
     // of one of those names is kept and the run refused now, not after the work)
