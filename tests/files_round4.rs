@@ -264,3 +264,90 @@ fn a_set_the_caller_may_not_replace_is_refused_before_the_work() {
     assert_eq!(listing(&sticky), before);
     assert_eq!(listing(&d.join("read-only")), Vec::<String>::new());
 }
+
+/// Item 2, the interrupted run's word: a SIGINT after an output was written whole says which
+/// outputs are complete (a bare status 130 read as a lost result), and one before any write
+/// says that nothing was written.
+#[test]
+fn item_2_an_interruption_names_the_outputs_written_whole() {
+    use std::process::{Command, Stdio};
+    let d = scratch("r4-interrupted");
+    let fifo = d.join("state.fifo");
+    assert!(Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .unwrap()
+        .success());
+    let interrupt_when = |args: &[&str], ready: &dyn Fn() -> bool| {
+        let child = Command::new(env!("CARGO_BIN_EXE_cantilever"))
+            .args(args)
+            .current_dir(&d)
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let t = std::time::Instant::now();
+        while !ready() && t.elapsed().as_secs() < 60 {
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        }
+        std::thread::sleep(std::time::Duration::from_millis(200));
+        let pid = child.id().to_string();
+        assert!(Command::new("kill")
+            .args(["-INT", &pid])
+            .status()
+            .unwrap()
+            .success());
+        let out = child.wait_with_output().unwrap();
+        (
+            out.status.code().unwrap_or(-1),
+            String::from_utf8_lossy(&out.stderr).into_owned(),
+        )
+    };
+    let run = [
+        "simulate",
+        "--modes",
+        "2",
+        "--zeta1",
+        "0.01",
+        "--omega",
+        "1",
+        "--periods",
+        "10",
+        "--record",
+        "2",
+        "--dense",
+        "dense.csv",
+        "--final-state",
+        "state.fifo",
+    ];
+    // the dense output is written, then the final state waits on the FIFO's reader
+    let (code, err) = interrupt_when(&run, &|| d.join("dense.csv").exists());
+    assert_eq!(code, 130, "{err}");
+    assert!(
+        err.contains("interrupted (SIGINT) after writing, complete:") && err.contains("dense.csv"),
+        "{err}"
+    );
+    let rows = std::fs::read_to_string(d.join("dense.csv"))
+        .unwrap()
+        .lines()
+        .count();
+    assert!(rows > 100, "{rows} rows");
+    // interrupted in the transient: nothing written, and it says so
+    let long = [
+        "simulate",
+        "--modes",
+        "10",
+        "--zeta1",
+        "0.01",
+        "--omega",
+        "1",
+        "--periods",
+        "10000000",
+        "--dense",
+        "never.csv",
+    ];
+    let (code, err) = interrupt_when(&long, &|| true);
+    assert_eq!(code, 130, "{err}");
+    assert!(err.contains("no output was written"), "{err}");
+    assert!(!d.join("never.csv").exists());
+}

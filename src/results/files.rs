@@ -38,6 +38,24 @@ pub(crate) fn writing() -> std::sync::MutexGuard<'static, ()> {
         .unwrap_or_else(|poisoned| poisoned.into_inner())
 }
 
+/// The outputs this run has written, complete (a file, or a set's folder): what a signal's
+/// message names as done, so an interruption after the last write does not read as a lost
+/// result.
+static COMPLETED: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// `path` has been written whole (called while [`writing`] is held, so a signal sees it
+/// either not yet written or written and recorded).
+pub(crate) fn completed(path: &Path) {
+    if let Ok(mut c) = COMPLETED.lock() {
+        c.push(path.to_path_buf());
+    }
+}
+
+/// The outputs written whole so far, in order.
+pub fn completed_outputs() -> Vec<PathBuf> {
+    COMPLETED.lock().map(|c| c.clone()).unwrap_or_default()
+}
+
 pub(crate) fn register(path: &Path) {
     register_aside(path, None);
 }
@@ -289,12 +307,16 @@ pub fn write_atomically(path: &Path, text: &str) -> Result<(), Error> {
                 .open(&p)
                 .map_err(io(&p))?;
             f.write_all(text.as_bytes()).map_err(io(&p))?;
-            f.flush().map_err(io(&p))
+            f.flush().map_err(io(&p))?;
+            completed(path);
+            Ok(())
         }
         Target::Replace(p) => {
             // a signal waits for the rename in progress
             let _writing = writing();
-            replace_file(&p, text)
+            replace_file(&p, text)?;
+            completed(path);
+            Ok(())
         }
     }
 }

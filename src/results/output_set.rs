@@ -322,6 +322,7 @@ fn write_set_in(dir: &Path, set: &[(String, String)]) -> Result<(), Error> {
     }
     if committed.is_ok() {
         let _ = std::fs::remove_file(dir.join(JOURNAL));
+        files::completed(&dir);
     }
     committed
 }

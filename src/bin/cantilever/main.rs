@@ -332,7 +332,25 @@ fn clean_up_on_signals() {
     if let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGINT, SIGTERM, SIGHUP]) {
         std::thread::spawn(move || {
             if let Some(signal) = signals.forever().next() {
-                impacting_cantilever::results::files::remove_temporaries();
+                use impacting_cantilever::results::files;
+                files::remove_temporaries();
+                // what was written before the signal is whole; say so, or a status of 130
+                // after the last write would read as a lost result
+                let done = files::completed_outputs();
+                let name = match signal {
+                    SIGINT => "SIGINT",
+                    SIGTERM => "SIGTERM",
+                    _ => "SIGHUP",
+                };
+                if done.is_empty() {
+                    errln!("interrupted ({name}): no output was written; any earlier output is as it was");
+                } else {
+                    let list: Vec<String> = done.iter().map(|p| p.display().to_string()).collect();
+                    errln!(
+                        "interrupted ({name}) after writing, complete: {}; any other output is as it was",
+                        list.join(", ")
+                    );
+                }
                 std::process::exit(128 + signal);
             }
         });
