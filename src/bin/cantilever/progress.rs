@@ -3,7 +3,9 @@
 //! or not: one line with the time it projects from its measured rate — the units done
 //! since its first one (its set-up is not a rate: an atlas that spends seconds matching N
 //! to k before its first cell once projected "23 hours" for a run of 68 s), and only once
-//! enough of them are done.
+//! enough of them are done. The bar's own remaining time is that projection too ("rest
+//! measuring…" until then), not the bar library's estimate, which counts the set-up and
+//! showed hours for the first ticks of a run of seconds.
 
 use impacting_cantilever::results::scene::{Progress, Task};
 use indicatif::{HumanDuration, MultiProgress, ProgressBar, ProgressStyle};
@@ -21,11 +23,14 @@ const LONG: Duration = Duration::from_secs(600);
 #[derive(Default)]
 pub struct Bars(MultiProgress);
 
+/// When a task's first unit was done, and how many were done then (shared with its bar's
+/// remaining-time field).
+type First = std::sync::Arc<std::sync::Mutex<Option<(Instant, u64)>>>;
+
 struct Bar {
     bar: ProgressBar,
     what: String,
-    /// When the first unit was done, and how many were done then.
-    first: std::sync::Mutex<Option<(Instant, u64)>>,
+    first: First,
     announced: AtomicBool,
 }
 
@@ -78,12 +83,32 @@ impl Drop for Bar {
     }
 }
 
+/// The bar's remaining-time field: [`projected_rest`] from the units done since the first.
+fn rest_field(first: &First, done: u64, total: u64) -> String {
+    let at = *first.lock().unwrap_or_else(|p| p.into_inner());
+    at.and_then(|(since, at)| {
+        projected_rest(since.elapsed(), done.saturating_sub(at), total.saturating_sub(done))
+    })
+    .map_or("measuring…".to_string(), |rest| {
+        format!("about {}", HumanDuration(rest))
+    })
+}
+
 impl Progress for Bars {
     fn task(&self, what: &str, total: u64) -> Box<dyn Task + '_> {
+        let first: First = Default::default();
+        let shared = first.clone();
         let style = ProgressStyle::with_template(
-            "{msg} {elapsed_precise} [{bar:30}] {pos}/{len}, eta {eta}",
+            "{msg} {elapsed_precise} [{bar:30}] {pos}/{len}, rest {rest}",
         )
         .unwrap_or_else(|_| ProgressStyle::default_bar())
+        .with_key(
+            "rest",
+            move |state: &indicatif::ProgressState, w: &mut dyn std::fmt::Write| {
+                let total = state.len().unwrap_or(0);
+                let _ = w.write_str(&rest_field(&shared, state.pos(), total));
+            },
+        )
         .progress_chars("=> ");
         let bar = self.0.add(
             ProgressBar::new(total)
@@ -93,7 +118,7 @@ impl Progress for Bars {
         Box::new(Bar {
             bar,
             what: what.to_string(),
-            first: std::sync::Mutex::new(None),
+            first,
             announced: AtomicBool::new(false),
         })
     }
@@ -115,5 +140,19 @@ mod tests {
         // 1e8 periods at 25 ms each: weeks, no overflow
         let rest = projected_rest(s(2), 80, 100_000_000).unwrap();
         assert!((rest.as_secs_f64() - 0.025 * 1e8).abs() < 1e-6, "{rest:?}");
+    }
+
+    #[test]
+    fn the_bar_shows_no_remaining_time_until_the_rate_is_measured() {
+        let first: First = Default::default();
+        // before the first unit, and just after it: no projection from the set-up
+        assert_eq!(rest_field(&first, 0, 16384), "measuring…");
+        *first.lock().unwrap() = Some((Instant::now(), 1));
+        assert_eq!(rest_field(&first, 2, 16384), "measuring…");
+        // 40 units in the 4 s since the first: 0.1 s each
+        *first.lock().unwrap() = Some((Instant::now() - Duration::from_secs(4), 1));
+        let field = rest_field(&first, 41, 641);
+        // 60 s, give or take the time this test takes
+        assert!(field.starts_with("about 6") && field.ends_with("seconds"), "{field}");
     }
 }
