@@ -84,6 +84,9 @@ class Simulation:
     period_m: Optional[int]
     #: n: entries into contact (rigid: impacts) per period m, None when not periodic.
     impacts_n: Optional[int]
+    #: (fewest, most) entries in the window's blocks of m periods, None when not periodic:
+    #: apart where round-off decides an event, so that n is not exact.
+    impacts_n_range: Optional[tuple[int, int]]
     #: The smallest strobe residual found (None with fewer than 2 recorded periods).
     periodicity_residual: Optional[float]
     periodicity_tolerance: float
@@ -144,6 +147,9 @@ class Orbit:
     period_m: int
     #: n: entries into contact (rigid: impacts) per orbit period.
     impacts_n: int
+    #: (fewest, most) entries per orbit period over four periods run on from the orbit:
+    #: apart where round-off decides an event, so that n is not exact.
+    impacts_n_range: tuple[int, int]
     #: The Floquet multipliers, largest modulus first (complex).
     multipliers: NDArray[np.complex128]
     #: All multipliers inside the unit circle.

@@ -74,6 +74,7 @@ pub fn find_orbit<'py>(
     d.set_item("state", state(py, &f.state))?;
     d.set_item("period_m", f.period_m)?;
     d.set_item("impacts_n", f.impacts_n)?;
+    d.set_item("impacts_n_range", f.impacts_n_range)?;
     d.set_item("multipliers", PyArray1::from_vec(py, f.multipliers.clone()))?;
     d.set_item("stable", f.stable)?;
     d.set_item("residual", f.residual)?;

@@ -126,6 +126,7 @@ pub fn simulate<'py>(
     d.set_item("periodicity_tolerance", periodicity_tolerance)?;
     d.set_item("max_period_searched", s.max_period_searched)?;
     d.set_item("impacts_n", s.impacts_n)?;
+    d.set_item("impacts_n_range", s.impacts_n_range)?;
     d.set_item("contacts_in_window", s.contacts_in_window)?;
     d.set_item("max_tip", s.max_tip.map(|m| m.value))?;
     d.set_item("max_tip_time", s.max_tip.map(|m| m.time))?;

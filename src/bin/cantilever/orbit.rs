@@ -82,6 +82,9 @@ pub struct Report {
     pub orbit: PeriodicOrbit,
     /// r_E (eq 39) over one period, when asked for (null if the balance has no real root).
     pub energetic_restitution: Option<f64>,
+    /// [fewest, most] entries per orbit period over four periods run on from the orbit:
+    /// apart when round-off decides an event (see `impacts_n_range` of `find_orbit`).
+    pub impacts_n_range: [u64; 2],
     /// Where the Newton iteration started.
     pub start: String,
     /// The model: compliant or rigid.
@@ -127,6 +130,7 @@ pub fn run(args: &OrbitArgs) -> Result<Report, Error> {
     Ok(Report {
         orbit: found.orbit,
         energetic_restitution: found.energetic_restitution,
+        impacts_n_range: [found.impacts_n_range.0, found.impacts_n_range.1],
         start: format!(
             "{} after {} transient periods",
             file.unwrap_or(from),
@@ -155,11 +159,16 @@ pub fn to_text(r: &Report) -> String {
         }
         (_, _, k) => format!("compliant, k = {}k₁", k.unwrap_or(0.0)),
     };
+    let [fewest, most] = r.impacts_n_range;
+    let n = if fewest == most {
+        o.impacts_n.to_string()
+    } else {
+        format!("{fewest}–{most}")
+    };
     let mut s = format!(
-        "({}, {}) orbit, N = {}, {model}, ω = {}(β₁⁻)²: {} (spectral radius {:.6}), residual \
+        "({}, {n}) orbit, N = {}, {model}, ω = {}(β₁⁻)²: {} (spectral radius {:.6}), residual \
          {:.1e} after {} Newton steps\n",
         o.period_m,
-        o.impacts_n,
         r.modes,
         r.omega_over_w1,
         if o.stable { "stable" } else { "unstable" },
@@ -167,6 +176,14 @@ pub fn to_text(r: &Report) -> String {
         o.residual,
         o.iterations
     );
+    if fewest != most {
+        s.push_str(&format!(
+            "entries per orbit period: {fewest} to {most} over {} periods of the orbit — \
+             round-off decides at least one event (a flight or contact within round-off of \
+             the stop), so the count is not exact\n",
+            impacting_cantilever::analysis::find_orbit::COUNTED_REPEATS
+        ));
+    }
     if let Some(e) = r.energetic_restitution {
         s.push_str(&format!(
             "energetic coefficient of restitution r_E = {e:.10}\n"

@@ -87,7 +87,11 @@ impl Drop for Bar {
 fn rest_field(first: &First, done: u64, total: u64) -> String {
     let at = *first.lock().unwrap_or_else(|p| p.into_inner());
     at.and_then(|(since, at)| {
-        projected_rest(since.elapsed(), done.saturating_sub(at), total.saturating_sub(done))
+        projected_rest(
+            since.elapsed(),
+            done.saturating_sub(at),
+            total.saturating_sub(done),
+        )
     })
     .map_or("measuring…".to_string(), |rest| {
         format!("about {}", HumanDuration(rest))
@@ -153,6 +157,9 @@ mod tests {
         *first.lock().unwrap() = Some((Instant::now() - Duration::from_secs(4), 1));
         let field = rest_field(&first, 41, 641);
         // 60 s, give or take the time this test takes
-        assert!(field.starts_with("about 6") && field.ends_with("seconds"), "{field}");
+        assert!(
+            field.starts_with("about 6") && field.ends_with("seconds"),
+            "{field}"
+        );
     }
 }

@@ -194,6 +194,7 @@ pub fn to_json(r: &Report) -> Value {
         "periodicity_tolerance": r.args.periodicity_tolerance,
         "max_period_searched": s.max_period_searched,
         "impacts_n": s.impacts_n,
+        "impacts_n_range": s.impacts_n_range.map(|(lo, hi)| [lo, hi]),
         // the same, under its name before schema version 1 (kept for one release)
         "impacts_per_period": s.impacts_n,
         "contacts_in_window": s.contacts_in_window,
@@ -267,11 +268,25 @@ pub fn to_text(r: &Report) -> String {
     let what = if rigid { "impacts" } else { "contacts" };
     match (s.period_m, s.periodicity_residual) {
         (Some(m), res) => {
-            let n = s.impacts_n.unwrap_or(0);
+            let n = match s.impacts_n_range {
+                Some((lo, hi)) if lo != hi => format!("{lo}–{hi}"),
+                _ => s.impacts_n.unwrap_or(0).to_string(),
+            };
             t.push_str(&format!(
                 "orbit: ({m}, {n}) — period {m}, {n} {what} per period (residual {:.1e})\n",
                 res.unwrap_or(0.0)
-            ))
+            ));
+            if let Some((lo, hi)) = s.impacts_n_range.filter(|(lo, hi)| lo != hi) {
+                let blocks = if m == 1 {
+                    "the window's periods".to_string()
+                } else {
+                    format!("the window's blocks of {m} periods")
+                };
+                t.push_str(&format!(
+                    "  {lo} to {hi} {what} in {blocks}: round-off decides at least one event (a \
+                     flight or contact within round-off of the stop), so the count is not exact\n"
+                ));
+            }
         }
         (None, Some(res)) => t.push_str(&format!(
             "orbit: no period m ≤ {} within {} recorded periods (best residual {res:.1e}); {} \
