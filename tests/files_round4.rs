@@ -351,3 +351,63 @@ fn item_2_an_interruption_names_the_outputs_written_whole() {
     assert!(err.contains("no output was written"), "{err}");
     assert!(!d.join("never.csv").exists());
 }
+
+/// The recheck's new findings: a link leading nowhere as a parent of `--out` is refused
+/// before the work (it failed after it, exit 1, "File exists"); temporaries and probes of a
+/// run killed outright are removed by the next write of the same output (they stayed for
+/// good), those of a live process kept.
+#[test]
+fn recheck_links_above_the_output_and_orphans_of_killed_runs() {
+    let d = scratch("r4-recheck");
+    std::os::unix::fs::symlink("nowhere/x", d.join("dang")).unwrap();
+    std::os::unix::fs::symlink("loop-b", d.join("loop-a")).unwrap();
+    std::os::unix::fs::symlink("loop-a", d.join("loop-b")).unwrap();
+    for out in ["dang/sub", "loop-a/sub"] {
+        let t = std::time::Instant::now();
+        let (code, _, err) = cantilever_in(&d, &["scene", "atlas", "--out", out]);
+        assert_eq!(code, 2, "{out}: {err}");
+        assert!(err.contains("link"), "{out}: {err}");
+        assert!(t.elapsed().as_secs_f64() < 20.0, "refused after the work");
+    }
+    // no process has a PID above the kernel's limit (2²²): these are a killed run's
+    let dead = ".p.csv.cantilever-999999999.tmp";
+    let live = ".p.csv.cantilever-1.tmp";
+    let probe = ".cantilever-probe.999999999";
+    for name in [dead, live, probe] {
+        std::fs::write(d.join(name), "left").unwrap();
+    }
+    std::fs::write(d.join(".p.csv.cantilever-draft.tmp"), "the user's").unwrap();
+    let run = [
+        "simulate",
+        "--modes",
+        "1",
+        "--zeta1",
+        "0.01",
+        "--omega",
+        "1",
+        "--periods",
+        "1",
+        "--record",
+        "2",
+        "--dense",
+        "p.csv",
+    ];
+    let (code, _, err) = cantilever_in(&d, &run);
+    assert_eq!(code, 0, "{err}");
+    let left = listing(&d);
+    assert!(!left.iter().any(|n| n == dead || n == probe), "{left:?}");
+    assert!(
+        left.iter().any(|n| n == live),
+        "a live process's temporary: {left:?}"
+    );
+    assert!(
+        left.iter().any(|n| n == ".p.csv.cantilever-draft.tmp"),
+        "{left:?}"
+    );
+    // the probe beside an output set too
+    std::fs::create_dir(d.join("set")).unwrap();
+    std::fs::write(d.join("set").join(probe), "").unwrap();
+    let (code, _, err) = cantilever_in(&d, &["scene", "fig2", "--out", "set"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(!d.join("set").join(probe).exists());
+}

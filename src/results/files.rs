@@ -270,6 +270,8 @@ pub fn check_writable(flag: &str, path: &Path) -> Result<(), ParameterError> {
                     dir.display()
                 )));
             }
+            // a probe of a run killed between writing and removing it
+            remove_dead_temporaries(&dir, ".cantilever-probe.", "");
             let probe = dir.join(format!(".cantilever-probe.{}", std::process::id()));
             std::fs::write(&probe, b"")
                 .map_err(|e| bad(format!("a file in a writable directory ({e})")))?;
@@ -339,6 +341,32 @@ pub(crate) fn keep_metadata(old: &Path, fresh: &Path) -> Result<(), Error> {
     Ok(())
 }
 
+/// Removes, in `dir`, the regular files named `{prefix}{pid}{suffix}` of processes that no
+/// longer run: this program's temporaries or probes for one output, left by a run killed
+/// outright (SIGKILL) between writing and renaming or removing them. A live process's are
+/// kept (another run writing the same output), and so is anything else.
+pub fn remove_dead_temporaries(dir: &Path, prefix: &str, suffix: &str) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for e in entries.flatten() {
+        let name = e.file_name().to_string_lossy().into_owned();
+        let Some(pid) = name
+            .strip_prefix(prefix)
+            .and_then(|r| r.strip_suffix(suffix))
+            .and_then(|p| p.parse::<u32>().ok())
+        else {
+            continue;
+        };
+        let dead = pid != std::process::id()
+            && Path::new("/proc/self").exists()
+            && !Path::new(&format!("/proc/{pid}")).exists();
+        if dead && e.file_type().is_ok_and(|t| t.is_file()) {
+            let _ = std::fs::remove_file(e.path());
+        }
+    }
+}
+
 /// Replaces the regular file (or nothing) at `p` with `text`: a temporary beside it, given
 /// the old file's metadata, renamed over it.
 ///
@@ -350,8 +378,21 @@ pub(crate) fn replace_file(p: &Path, text: &str) -> Result<(), Error> {
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
     let tmp = p.with_file_name(format!(".{name}.cantilever-{}.tmp", std::process::id()));
+    if let Some(dir) = p.parent() {
+        let dir = if dir.as_os_str().is_empty() {
+            Path::new(".")
+        } else {
+            dir
+        };
+        remove_dead_temporaries(dir, &format!(".{name}.cantilever-"), ".tmp");
+    }
     register(&tmp);
-    let written = std::fs::write(&tmp, text)
+    let written = std::fs::File::create(&tmp)
+        .and_then(|mut f| {
+            f.write_all(text.as_bytes())?;
+            // on the disk before the rename, so a power loss cannot leave an empty file
+            f.sync_all()
+        })
         .map_err(io(&tmp))
         .and_then(|()| keep_metadata(p, &tmp))
         .and_then(|()| std::fs::rename(&tmp, p).map_err(io(p)));

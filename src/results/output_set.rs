@@ -115,6 +115,8 @@ fn sticky_obstacle(dir: &Path, names: &[&str]) -> Option<String> {
         return None;
     }
     // the caller's user is the owner of a file it creates (no need for a system call)
+    // a probe of a run killed between writing and removing it
+    files::remove_dead_temporaries(&dir, ".cantilever-probe.", "");
     let probe = dir.join(format!(".cantilever-probe.{}", std::process::id()));
     std::fs::write(&probe, b"").ok()?;
     let me = std::fs::metadata(&probe).map(|m| m.uid());
@@ -178,6 +180,15 @@ pub fn check_set(flag: &str, dir: &Path, names: &[&str]) -> Result<(), Parameter
         ));
     }
     Ok(())
+}
+
+/// Writes `bytes` to a new file at `path` and flushes it to the disk before the renames
+/// that depend on it, so a power loss after the commit cannot leave an empty file in place.
+fn write_synced(path: &Path, bytes: &[u8]) -> Result<(), Error> {
+    use std::io::Write;
+    let mut f = std::fs::File::create(path).map_err(io(path))?;
+    f.write_all(bytes).map_err(io(path))?;
+    f.sync_all().map_err(io(path))
 }
 
 fn io(path: &Path) -> impl Fn(std::io::Error) -> Error + '_ {
@@ -245,8 +256,7 @@ fn write_set_in(dir: &Path, set: &[(String, String)]) -> Result<(), Error> {
         let tmp = temporary(&dir, name, pid, "tmp");
         register(&tmp);
         written.push(tmp.clone());
-        let made = std::fs::write(&tmp, text)
-            .map_err(io(&tmp))
+        let made = write_synced(&tmp, text.as_bytes())
             .and_then(|()| files::keep_metadata(&dir.join(name), &tmp));
         if let Err(e) = made {
             for t in &written {
@@ -269,8 +279,16 @@ fn write_set_in(dir: &Path, set: &[(String, String)]) -> Result<(), Error> {
         "stale": stale,
         "manifest": checksum(manifest_new.as_bytes()),
     });
-    std::fs::write(dir.join(JOURNAL), journal.to_string()).map_err(io(&dir.join(JOURNAL)))?;
+    // registered first: a journal cut short by a full disk or a signal is removed with the
+    // temporaries, not left to name a transaction that never began
     register(&dir.join(JOURNAL));
+    if let Err(e) = write_synced(&dir.join(JOURNAL), journal.to_string().as_bytes()) {
+        for t in written.iter().chain([&dir.join(JOURNAL)]) {
+            let _ = std::fs::remove_file(t);
+            unregister(t);
+        }
+        return Err(e);
+    }
     let committed = (|| -> Result<(), Error> {
         for name in names
             .iter()
@@ -322,6 +340,8 @@ fn write_set_in(dir: &Path, set: &[(String, String)]) -> Result<(), Error> {
     }
     if committed.is_ok() {
         let _ = std::fs::remove_file(dir.join(JOURNAL));
+        // the renames themselves, to the disk
+        let _ = std::fs::File::open(&dir).and_then(|d| d.sync_all());
         files::completed(&dir);
     }
     committed
@@ -533,5 +553,17 @@ mod tests {
         assert!(may_replace_in_sticky(1000, 0, 1000));
         assert!(!may_replace_in_sticky(1000, 0, 1001));
         assert!(!may_replace_in_sticky(65534, 0, 0));
+    }
+
+    #[test]
+    fn a_journal_that_cannot_be_written_leaves_the_old_set_and_no_temporaries() {
+        let d = scratch("journal-fails");
+        write_set(&d, &set("old")).unwrap();
+        // a folder in the journal's place: its write fails as a full disk's would
+        std::fs::create_dir(d.join(JOURNAL)).unwrap();
+        assert!(write_set(&d, &set("new")).is_err());
+        std::fs::remove_dir(d.join(JOURNAL)).unwrap();
+        assert_eq!(listing(&d), [MANIFEST, "data.json", "plot.svg"]);
+        assert_eq!(std::fs::read_to_string(d.join("data.json")).unwrap(), "old");
     }
 }

@@ -28,6 +28,16 @@ pub fn writable_dir(dir: &std::path::Path) -> Result<(), ParameterError> {
     };
     if !exists {
         while !probe_dir.exists() {
+            // an ancestor that is a link leading nowhere (dangling, or a loop) would stop
+            // the folder's creation after the work
+            if std::fs::symlink_metadata(&probe_dir).is_ok_and(|m| m.file_type().is_symlink()) {
+                let why = std::fs::metadata(&probe_dir).err().map(|e| e.to_string());
+                return Err(fail(format!(
+                    "a directory or a new path ({} is a link that leads to no directory: {})",
+                    probe_dir.display(),
+                    why.unwrap_or_default()
+                )));
+            }
             probe_dir = match probe_dir.parent() {
                 Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
                 _ => std::path::PathBuf::from("."),
@@ -43,6 +53,12 @@ pub fn writable_dir(dir: &std::path::Path) -> Result<(), ParameterError> {
     // Probed inside an existing `dir`: the set's temporaries, lock and manifest are written
     // there (the folder itself is never replaced), so a folder that takes no file — a
     // read-only one in a writable parent — is refused now, not at the first write
+    // a probe of a run killed between writing and removing it
+    impacting_cantilever::results::files::remove_dead_temporaries(
+        &probe_dir,
+        ".cantilever-probe.",
+        "",
+    );
     let probe = probe_dir.join(format!(".cantilever-probe.{}", std::process::id()));
     let written = std::fs::write(&probe, b"");
     let _ = std::fs::remove_file(&probe);
