@@ -394,6 +394,16 @@ fn modes_needed_answers_and_refuses_bad_input() {
         cantilever(&["modes-needed", "--stop-stiffness", "10", "--tolerance", "0"]);
     assert_eq!(code, 2);
     assert!(err.contains("--tolerance"), "{err}");
+    // ζ₁ = 0 was documented as legal and refused as "first-mode damping C₁₁": the range
+    // says what is taken, and the refusal names the option
+    let (code, _, err) = cantilever(&["modes-needed", "--stop-stiffness", "10", "--zeta1", "0"]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("--zeta1") && err.contains("1e-8 to 0.9"),
+        "{err}"
+    );
+    let (_, help, _) = cantilever(&["modes-needed", "--help"]);
+    assert!(help.contains("(1e-8 to 0.9)"), "{help}");
 }
 
 #[test]

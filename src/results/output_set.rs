@@ -61,6 +61,9 @@ fn manifest(dir: &Path) -> BTreeMap<String, String> {
         .as_object()
         .map(|o| {
             o.iter()
+                // a name with a path in it is not one this program writes (a manifest
+                // edited to reach outside the folder names nothing)
+                .filter(|(k, _)| !k.is_empty() && !k.contains('/') && *k != "." && *k != "..")
                 .filter_map(|(k, v)| Some((k.clone(), v.as_str()?.to_string())))
                 .collect()
         })
@@ -565,5 +568,26 @@ mod tests {
         std::fs::remove_dir(d.join(JOURNAL)).unwrap();
         assert_eq!(listing(&d), [MANIFEST, "data.json", "plot.svg"]);
         assert_eq!(std::fs::read_to_string(d.join("data.json")).unwrap(), "old");
+    }
+
+    #[test]
+    fn a_manifest_naming_a_path_outside_the_folder_names_nothing() {
+        let d = scratch("forged");
+        write_set(&d, &set("old")).unwrap();
+        let victim = d.with_extension("victim.json");
+        std::fs::write(&victim, "keep").unwrap();
+        let name = format!("../{}", victim.file_name().unwrap().to_string_lossy());
+        let forged = serde_json::json!({
+            "format": MANIFEST_FORMAT,
+            "files": {
+                name: checksum(b"keep"),
+                "data.json": checksum(b"old"),
+                "plot.svg": checksum(b"<svg>old</svg>"),
+            },
+        });
+        std::fs::write(d.join(MANIFEST), forged.to_string()).unwrap();
+        write_set(&d, &set("new")).unwrap();
+        assert_eq!(std::fs::read_to_string(&victim).unwrap(), "keep");
+        std::fs::remove_file(victim).unwrap();
     }
 }

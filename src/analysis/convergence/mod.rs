@@ -544,7 +544,14 @@ pub fn modes_needed(k_over_k1: f64, tol: f64, zeta1: f64) -> Result<ModesNeeded,
         0.5,
         "a relative accuracy from 1e-9 to 0.5",
     )?;
-    in_range("--zeta1", zeta1, 0.0, 0.9, "a damping ratio from 0 to 0.9")?;
+    // above 0: the model scales its unit forcing with ζ₁, as every command does (1e-8 up)
+    in_range(
+        "--zeta1",
+        zeta1,
+        1e-8,
+        0.9,
+        "a damping ratio from 1e-8 to 0.9",
+    )?;
     use rayon::prelude::*;
     let setup = Setup {
         k_over_k1,

@@ -143,7 +143,7 @@ enum Command {
         /// Relative accuracy wanted (1e-9 to 0.5), relative to each observable's scale.
         #[arg(long, allow_hyphen_values = true, default_value_t = 1e-3)]
         tolerance: f64,
-        /// Material damping as the first mode's damping ratio ζ₁ (0 to 0.9).
+        /// Material damping as the first mode's damping ratio ζ₁ (1e-8 to 0.9).
         #[arg(long, allow_hyphen_values = true, default_value_t = 0.01)]
         zeta1: f64,
         /// Print JSON.

@@ -217,3 +217,29 @@ impl StartArgs {
         Ok((self.seed.map_or(Start::Rest, Start::Seed), None))
     }
 }
+
+/// A count given as an integer or in e-notation ("1e8", as the ranges in `--help` print
+/// them): exact whole numbers only, up to 2⁵³ (beyond, e-notation is not exact).
+pub fn whole(text: &str) -> Result<u64, String> {
+    if let Ok(n) = text.parse::<u64>() {
+        return Ok(n);
+    }
+    match text.parse::<f64>() {
+        Ok(x) if x >= 0.0 && x.fract() == 0.0 && x <= 9_007_199_254_740_992.0 => Ok(x as u64),
+        _ => Err("a whole number (e.g. 20 or 1e8)".into()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn counts_are_taken_as_the_help_prints_them() {
+        use super::whole;
+        assert_eq!(whole("20"), Ok(20));
+        assert_eq!(whole("1e8"), Ok(100_000_000));
+        assert_eq!(whole("2E1"), Ok(20));
+        for bad in ["1.5", "-1", "nan", "inf", "1e300", "", "x"] {
+            assert!(whole(bad).is_err(), "{bad}");
+        }
+    }
+}

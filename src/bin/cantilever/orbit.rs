@@ -31,11 +31,11 @@ pub struct OrbitArgs {
 #[derive(Debug, Clone, clap::Args)]
 pub struct SearchArgs {
     /// Transient: forcing periods run from the start before the orbit is read (0 to 1e8).
-    #[arg(long, default_value_t = DEFAULTS.transient)]
+    #[arg(long, value_parser = crate::model_args::whole, default_value_t = DEFAULTS.transient)]
     pub periods: u64,
     /// The window: periods whose stroboscopic samples give the period m (2 to 10 000; m is
     /// read up to min(64, record − 1)).
-    #[arg(long, default_value_t = DEFAULTS.window)]
+    #[arg(long, value_parser = crate::model_args::whole, default_value_t = DEFAULTS.window)]
     pub record: u64,
     /// The orbit's period m in forcing periods (1 to 64), if known; read from the window
     /// otherwise (the smallest m whose samples repeat to --period-tolerance).
@@ -198,11 +198,13 @@ pub fn to_text(r: &Report) -> String {
     } else {
         "multipliers (largest first):\n".to_string()
     });
+    // a part that prints as zero prints as +0, not "-0.0000000000"
+    let printed = |x: f64| if x.abs() < 5e-11 { 0.0 } else { x };
     for z in o.multipliers.iter().take(shown) {
         s.push_str(&format!(
             "  {:+.10} {:+.10}i  |μ| = {:.10}\n",
-            z[0],
-            z[1],
+            printed(z[0]),
+            printed(z[1]),
             z[0].hypot(z[1])
         ));
     }

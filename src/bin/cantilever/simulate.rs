@@ -24,10 +24,10 @@ pub struct SimulateArgs {
     pub start: StartArgs,
     /// Periods simulated and discarded before recording (0 to 1e8). A run that projects to
     /// take over 10 minutes says so after 2 s, with the time it projects.
-    #[arg(long)]
+    #[arg(long, value_parser = crate::model_args::whole)]
     pub periods: u64,
     /// Periods recorded after that (0 to 1e5).
-    #[arg(long, default_value_t = DEFAULTS.record)]
+    #[arg(long, value_parser = crate::model_args::whole, default_value_t = DEFAULTS.record)]
     pub record: u64,
     /// Skip the exact energy budget (energy_imbalance is then null): it adds about 20% to a
     /// run, at Figure 4's N = 10 as at stiff stops up to 1e12k₁ (instructions counted: 18%
