@@ -119,7 +119,7 @@ fn sticky_obstacle(dir: &Path, names: &[&str]) -> Option<String> {
     }
     // the caller's user is the owner of a file it creates (no need for a system call)
     // a probe of a run killed between writing and removing it
-    files::remove_dead_temporaries(&dir, ".cantilever-probe.", "");
+    files::remove_dead_temporaries(dir, ".cantilever-probe.", "");
     let probe = dir.join(format!(".cantilever-probe.{}", std::process::id()));
     std::fs::write(&probe, b"").ok()?;
     let me = std::fs::metadata(&probe).map(|m| m.uid());
