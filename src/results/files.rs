@@ -77,7 +77,19 @@ pub(crate) fn unregister(path: &Path) {
 /// and puts an old output set back where an interrupted swap had moved it aside and the
 /// new set is not yet in place — an interrupted write never loses the old output.
 pub fn remove_temporaries() {
-    let _writing = writing();
+    drop(remove_temporaries_and_hold());
+}
+
+/// [`remove_temporaries`], returning the guard that holds every write of this process off:
+/// a signal's clean-up keeps it until the process exits, or a write that began after the
+/// clean-up (the next file of a set) would leave its temporary behind.
+pub fn remove_temporaries_and_hold() -> std::sync::MutexGuard<'static, ()> {
+    let writing = writing();
+    remove_registered();
+    writing
+}
+
+fn remove_registered() {
     let entries = match TEMPORARIES.lock() {
         Ok(mut t) => std::mem::take(&mut *t),
         Err(_) => return,

@@ -333,7 +333,8 @@ fn clean_up_on_signals() {
         std::thread::spawn(move || {
             if let Some(signal) = signals.forever().next() {
                 use impacting_cantilever::results::files;
-                files::remove_temporaries();
+                // held to the exit: no write of the main thread begins after the clean-up
+                let _no_more_writes = files::remove_temporaries_and_hold();
                 // what was written before the signal is whole; say so, or a status of 130
                 // after the last write would read as a lost result
                 let done = files::completed_outputs();
