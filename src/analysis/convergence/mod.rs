@@ -412,7 +412,7 @@ impl std::fmt::Display for Needed {
         match self {
             Self::Scanned(n) => write!(f, "{n}"),
             Self::Beyond { estimate } => {
-                write!(f, "≈ {:.0} (estimated beyond the scan)", estimate.ceil())
+                write!(f, "≈ {:.0} (estimated)", estimate.ceil())
             }
             Self::Unconfirmed { estimate } => {
                 write!(
