@@ -292,10 +292,16 @@ fn item_11_an_output_set_is_written_whole_even_by_concurrent_writers() {
             let out = format!("{name}{}.json", &shard[..1]);
             let (code, _, err) = cantilever_in(
                 &d,
+                // 2 × 2 cells: the writes race whatever the atlas's size, and a debug
+                // build of the test resolution's atlas took 10 s
                 &[
                     "atlas",
                     "--resolution",
                     "test",
+                    "--k-points",
+                    "2",
+                    "--omega-points",
+                    "2",
                     "--seed",
                     seed,
                     "--shard",

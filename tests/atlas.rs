@@ -26,7 +26,13 @@ fn through_json(p: Partial) -> Partial {
 
 #[test]
 fn sharded_atlas_is_identical_to_unsharded_for_any_thread_count() {
-    let p = small();
+    // 4 k × 3 ω: every shard count below splits the rows differently, and the property
+    // (each row depends only on the parameters and its index) does not need more cells
+    let p = AtlasParams {
+        k_points: 4,
+        omega_points: 3,
+        ..small()
+    };
     let whole = atlas::compute(&p, &|| {}).unwrap();
     // one thread: the rows run in order
     let single = rayon::ThreadPoolBuilder::new()
@@ -35,7 +41,7 @@ fn sharded_atlas_is_identical_to_unsharded_for_any_thread_count() {
         .unwrap()
         .install(|| atlas::compute(&p, &|| {}).unwrap());
     assert_eq!(whole, single);
-    for count in [2, 3, 5] {
+    for count in [2, 3, 4] {
         let mut parts: Vec<Partial> = (0..count)
             .map(|index| {
                 through_json(atlas::compute_shard(&p, Shard { index, count }, &|| {}).unwrap())

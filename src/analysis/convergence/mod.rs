@@ -520,9 +520,34 @@ pub struct ModesNeeded {
 ///
 /// # Errors
 /// [`Error::Parameter`] for k/k₁ outside 1e-3…1e6, `tol` outside 1e-9…0.5 or ζ₁ outside
-/// 0…0.9; [`Error::Flow`] or a run's error at some N of [`SCAN`]; [`Error::Unsupported`] when
+/// 1e-8…0.9; [`Error::Flow`] or a run's error at some N of [`SCAN`]; [`Error::Unsupported`] when
 /// the tip does not leave the stop.
 pub fn modes_needed(k_over_k1: f64, tol: f64, zeta1: f64) -> Result<ModesNeeded, Error> {
+    // A pure function of its three numbers, asked again and again for the same ones (every
+    // atlas shard, map and scene that matches N to k): answered once per process. Only
+    // answers are kept, so an interrupted or failed scan is computed afresh.
+    type Key = (u64, u64, u64);
+    static ANSWERS: std::sync::Mutex<Vec<(Key, ModesNeeded)>> = std::sync::Mutex::new(Vec::new());
+    let key = (k_over_k1.to_bits(), tol.to_bits(), zeta1.to_bits());
+    let known = |answers: &std::sync::Mutex<Vec<(Key, ModesNeeded)>>| {
+        let a = answers.lock().unwrap_or_else(|p| p.into_inner());
+        a.iter().find(|(k, _)| *k == key).map(|(_, m)| m.clone())
+    };
+    if let Some(m) = known(&ANSWERS) {
+        return Ok(m);
+    }
+    let m = scan_modes_needed(k_over_k1, tol, zeta1)?;
+    let mut answers = ANSWERS.lock().unwrap_or_else(|p| p.into_inner());
+    // bounded: a long sweep over many stiffnesses keeps its most recent answers only
+    if answers.len() >= 256 {
+        answers.remove(0);
+    }
+    answers.push((key, m.clone()));
+    Ok(m)
+}
+
+/// [`modes_needed`], computed.
+fn scan_modes_needed(k_over_k1: f64, tol: f64, zeta1: f64) -> Result<ModesNeeded, Error> {
     let in_range = |name: &str, x: f64, lo: f64, hi: f64, allowed: &str| {
         if x.is_finite() && x >= lo && x <= hi {
             Ok(x)
