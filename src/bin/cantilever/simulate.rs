@@ -29,9 +29,10 @@ pub struct SimulateArgs {
     /// Periods recorded after that (0 to 1e5).
     #[arg(long, value_parser = crate::model_args::whole, default_value_t = DEFAULTS.record)]
     pub record: u64,
-    /// Skip the exact energy budget (energy_imbalance is then null): it adds about 20% to a
-    /// run, at Figure 4's N = 10 as at stiff stops up to 1e12k₁ (instructions counted: 18%
-    /// at N = 10, 17–21% at 1e11–1e12k₁ with N = 10–20). Compliant model only.
+    /// Skip the exact energy budget (energy_imbalance, energy_imbalance_bound and
+    /// energy_imbalance_within_bound are then null): it adds about 20% to a run, at Figure
+    /// 4's N = 10 as at stiff stops up to 1e12k₁ (instructions counted: 18% at N = 10,
+    /// 17–21% at 1e11–1e12k₁ with N = 10–20). Compliant model only.
     #[arg(long)]
     pub no_energy: bool,
     /// Write the final state (JSON) to chain runs or pick one of coexisting attractors.
