@@ -3,6 +3,9 @@
 //! malformed), and on the committed published numbers against themselves.
 #![cfg(feature = "cli")]
 
+#[path = "common/cli.rs"]
+mod cli;
+
 use impacting_cantilever::base::report::{KeyNumbers, Uncertainty};
 use impacting_cantilever::results::diff::{self, Change};
 use serde_json::json;
@@ -24,6 +27,7 @@ fn cantilever(args: &[&str], dir: &Path) -> (i32, String, String) {
 
 /// A fresh directory for one test.
 fn scratch(name: &str) -> PathBuf {
+    cli::remove_old_scratch(&format!("cantilever-diff-{name}-"));
     let dir = std::env::temp_dir().join(format!("cantilever-diff-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();

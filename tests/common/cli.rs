@@ -18,8 +18,33 @@ pub fn cantilever(args: &[&str]) -> (i32, String, String) {
     )
 }
 
+/// Removes the scratch folders `{prefix}{pid}` of test runs whose process is gone (each run
+/// names its folders by its PID and leaves them for a look after a failure; without this
+/// they pile up in the system's temporary folder, one set per run).
+pub fn remove_old_scratch(prefix: &str) {
+    let Ok(entries) = std::fs::read_dir(std::env::temp_dir()) else {
+        return;
+    };
+    for e in entries.flatten() {
+        let name = e.file_name().to_string_lossy().into_owned();
+        let Some(pid) = name
+            .strip_prefix(prefix)
+            .and_then(|p| p.parse::<u32>().ok())
+        else {
+            continue;
+        };
+        let gone = pid != std::process::id()
+            && std::path::Path::new("/proc/self").exists()
+            && !std::path::Path::new(&format!("/proc/{pid}")).exists();
+        if gone && e.file_type().is_ok_and(|t| t.is_dir()) {
+            let _ = std::fs::remove_dir_all(e.path());
+        }
+    }
+}
+
 /// A fresh directory for one test.
 pub fn scratch(name: &str) -> std::path::PathBuf {
+    remove_old_scratch(&format!("round3-{name}-"));
     let d = std::env::temp_dir().join(format!("round3-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).unwrap();
