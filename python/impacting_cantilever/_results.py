@@ -94,6 +94,12 @@ class Simulation:
     max_period_searched: int
     #: Entries into contact (impacts) in the whole recorded window.
     contacts_in_window: int
+    #: Flights between two contacts that rise less than ``flight_resolution`` from the stop:
+    #: where there are any, round-off decides the counts above (they are not exact).
+    shallow_flights: int
+    #: The tip displacement the flow resolves (κε × the larger of the window's largest tip
+    #: displacement and A_free(ω); 0 without a window or for the rigid model).
+    flight_resolution: float
     #: The certified largest tip displacement of the window (compliant), with when and to
     #: what tolerance: no value of d in the window exceeds it by more.
     max_tip: Optional[float]

@@ -128,6 +128,8 @@ pub fn simulate<'py>(
     d.set_item("impacts_n", s.impacts_n)?;
     d.set_item("impacts_n_range", s.impacts_n_range)?;
     d.set_item("contacts_in_window", s.contacts_in_window)?;
+    d.set_item("shallow_flights", s.shallow_flights)?;
+    d.set_item("flight_resolution", s.flight_resolution)?;
     d.set_item("max_tip", s.max_tip.map(|m| m.value))?;
     d.set_item("max_tip_time", s.max_tip.map(|m| m.time))?;
     d.set_item("max_tip_tolerance", s.max_tip.map(|m| m.tolerance))?;

@@ -90,6 +90,53 @@ pub fn richardson(f1: f64, f2: f64, f3: f64, r: f64) -> Richardson {
     }
 }
 
+/// Richardson extrapolation in a resolution N (modes, elements) whose error falls as
+/// N^(−p), from three solutions at any N₁ > N₂ > N₃ (f₁ at the finest): the ladder need not
+/// have a constant ratio (the book's orbit diagnostics use N = 20, 30, 40). The order solves
+/// (f₃ − f₂)/(f₂ − f₁) = (h₃ᵖ − h₂ᵖ)/(h₂ᵖ − h₁ᵖ) with hᵢ = 1/Nᵢ (bisection: the right side
+/// grows with p); with a constant ratio r this is [`richardson`]'s closed form. An order the
+/// bracket [10⁻³, 60] cannot hold is returned at the bracket's end, for the caller's range
+/// check to reject.
+pub fn richardson_in_resolution(n: [f64; 3], f: [f64; 3]) -> Richardson {
+    let [f1, f2, f3] = f;
+    let (d21, d32) = (f2 - f1, f3 - f2);
+    if d21 == 0.0 && d32 == 0.0 {
+        return Richardson::Converged;
+    }
+    if d21 == 0.0 || d32 == 0.0 || d21.signum() != d32.signum() {
+        let lo = f1.min(f2).min(f3);
+        let hi = f1.max(f2).max(f3);
+        return Richardson::Oscillatory { spread: hi - lo };
+    }
+    let h = n.map(|n| 1.0 / n);
+    let ratio = |p: f64| (h[2].powf(p) - h[1].powf(p)) / (h[1].powf(p) - h[0].powf(p));
+    let target = d32 / d21;
+    let (mut lo, mut hi) = (1e-3_f64, 60.0_f64);
+    let order = if target <= ratio(lo) {
+        lo
+    } else if target >= ratio(hi) {
+        hi
+    } else {
+        // 200 halvings of a bracket of width 60 reach the spacing of doubles
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if ratio(mid) < target {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
+    };
+    let coefficient = d21 / (h[1].powf(order) - h[0].powf(order));
+    let extrapolated = f1 - coefficient * h[0].powf(order);
+    Richardson::Monotone {
+        order,
+        extrapolated,
+        gci: 1.25 * ((f1 - extrapolated) / f1).abs(),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -124,5 +171,45 @@ mod tests {
             Richardson::Oscillatory { .. }
         ));
         assert_eq!(richardson(1.0, 1.0, 1.0, 2.0), Richardson::Converged);
+    }
+
+    #[test]
+    fn an_uneven_ladder_recovers_the_order_and_limit_of_a_power_law() {
+        // f(N) = 0.7 + 0.3 N^(−2.5) on N = 40, 30, 20: exact data, so only round-off remains
+        let f = |n: f64| 0.7 + 0.3 * n.powf(-2.5);
+        match richardson_in_resolution([40.0, 30.0, 20.0], [f(40.0), f(30.0), f(20.0)]) {
+            Richardson::Monotone {
+                order,
+                extrapolated,
+                ..
+            } => {
+                assert!((order - 2.5).abs() < 1e-7, "{order}");
+                assert!((extrapolated - 0.7).abs() < 1e-12, "{extrapolated}");
+            }
+            other => panic!("{other:?}"),
+        }
+        // a constant ratio agrees with the closed form
+        let g = |n: f64| 2.0 - n.powf(-1.5);
+        let (a, b) = (
+            richardson_in_resolution([40.0, 20.0, 10.0], [g(40.0), g(20.0), g(10.0)]),
+            richardson(g(40.0), g(20.0), g(10.0), 2.0),
+        );
+        match (a, b) {
+            (
+                Richardson::Monotone {
+                    order: p,
+                    extrapolated: x,
+                    gci: u,
+                },
+                Richardson::Monotone {
+                    order: q,
+                    extrapolated: y,
+                    gci: v,
+                },
+            ) => {
+                assert!((p - q).abs() < 1e-9 && (x - y).abs() < 1e-12 && (u - v).abs() < 1e-9);
+            }
+            other => panic!("{other:?}"),
+        }
     }
 }

@@ -18,9 +18,11 @@
 //! so errors are expected to fall like k/β_N³ ∝ N⁻³ once (β_N)³ ≫ k — the paper's criterion.
 
 pub mod needed;
+pub mod truncation;
 pub mod two_basis_runs;
 
 pub use needed::{criterion_modes, matched_modes, modes_needed, ModesNeeded, Needed, SCAN};
+pub use truncation::{truncation_error, TruncationError};
 
 use crate::analysis::orbit::{settle_until_periodic, OrbitKind};
 use crate::base::verification::{self, Richardson};

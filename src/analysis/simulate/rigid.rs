@@ -134,6 +134,8 @@ pub(super) fn rigid(
         impacts_n_range: period_m.map(|m| impacts_range(&counted, cycle, m, options.record)),
         impacts_n: period_m.map(|m| impacts(cycle - m as i64)),
         contacts_in_window: impacts(cycle - options.record as i64),
+        shallow_flights: 0,
+        flight_resolution: 0.0,
         events,
         period_m,
         periodicity_residual,

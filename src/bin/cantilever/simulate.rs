@@ -199,6 +199,8 @@ pub fn to_json(r: &Report) -> Value {
         // the same, under its name before schema version 1 (kept for one release)
         "impacts_per_period": s.impacts_n,
         "contacts_in_window": s.contacts_in_window,
+        "shallow_flights": s.shallow_flights,
+        "flight_resolution": s.flight_resolution,
         "max_tip": s.max_tip.map(|m| m.value),
         "max_tip_time": s.max_tip.map(|m| m.time),
         "max_tip_tolerance": s.max_tip.map(|m| m.tolerance),
@@ -303,6 +305,14 @@ pub fn to_text(r: &Report) -> String {
             },
             s.contacts_in_window
         )),
+    }
+    if s.shallow_flights > 0 {
+        t.push_str(&format!(
+            "  these counts are not certified: {} flights between contacts rise less than the \
+             flow's accuracy bound {:.0e} (κε × the motion's size) from the stop; where such \
+             flights are many, round-off decides the counts\n",
+            s.shallow_flights, s.flight_resolution
+        ));
     }
     match s.max_tip {
         Some(m) => t.push_str(&format!(

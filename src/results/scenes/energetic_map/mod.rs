@@ -117,6 +117,64 @@ pub struct MapPoint {
     pub random: OrbitKind,
     /// The verdict on the point.
     pub cell: Cell,
+    /// With N + 2 × extra modes: the third rung of the truncation ladder, computed only for
+    /// the points the key numbers cite ([`cited_points`]).
+    pub third: Option<(OrbitKind, Option<Coefficient>)>,
+}
+
+impl MapPoint {
+    /// The truncation ± of a converged value by the book's one rule (Richardson over N,
+    /// N + extra, N + 2·extra: [`crate::analysis::convergence::truncation`]); None without the
+    /// third rung or when it leaves the orbit.
+    pub fn truncation(&self, extra: usize) -> Option<crate::analysis::convergence::TruncationError> {
+        let Cell::Value(r) = self.cell else {
+            return None;
+        };
+        let (kind, third) = self.third?;
+        let value = |c: Option<Coefficient>| c.and_then(|c| c.value());
+        if kind != self.kind {
+            return None;
+        }
+        let ladder = [
+            (self.modes, r),
+            (self.modes + extra, value(self.refined.1)?),
+            (self.modes + 2 * extra, value(third)?),
+        ];
+        crate::analysis::convergence::truncation_error(self.modes, &ladder)
+    }
+}
+
+/// The points whose r_E the key numbers cite: the smallest and largest converged values and
+/// the converged values along ω = 2(β₁⁻)² at k = 10² and 10³k₁ (Figure 6(b)'s frequency).
+pub fn cited_points(points: &[MapPoint]) -> Vec<usize> {
+    let values: Vec<(usize, f64)> = points
+        .iter()
+        .enumerate()
+        .filter_map(|(i, p)| match p.cell {
+            Cell::Value(r) => Some((i, r)),
+            _ => None,
+        })
+        .collect();
+    let mut cited: Vec<usize> = [
+        values.iter().min_by(|a, b| a.1.total_cmp(&b.1)),
+        values.iter().max_by(|a, b| a.1.total_cmp(&b.1)),
+    ]
+    .into_iter()
+    .flatten()
+    .map(|v| v.0)
+    .collect();
+    cited.extend(values.iter().map(|v| v.0).filter(|&i| on_omega_2_at_cited_k(&points[i])));
+    cited.sort_unstable();
+    cited.dedup();
+    cited
+}
+
+/// ω = 2(β₁⁻)² and k = 10² or 10³k₁: the line of Figure 6(b) whose r_E is cited.
+fn on_omega_2_at_cited_k(p: &MapPoint) -> bool {
+    (p.omega_over_w1 - 2.0).abs() < 1e-9
+        && [100.0, 1000.0]
+            .iter()
+            .any(|k| (p.k_over_k1 / k - 1.0).abs() < 1e-9)
 }
 
 /// The scene's result.
@@ -168,7 +226,25 @@ fn point(p: &MapParams, omega: f64, k: f64, modes: usize, index: u64) -> Result<
         refined: (refined.kind, refined.coefficient),
         random,
         cell,
+        third: None,
     })
+}
+
+/// The third rung (N + 2·extra modes, from rest) of a cited point.
+fn third_rung(p: &MapParams, point: &MapPoint) -> Result<(OrbitKind, Option<Coefficient>), Error> {
+    let n3 = point.modes + 2 * p.extra_modes;
+    let model = Forced {
+        modes: n3,
+        k_over_k1: point.k_over_k1,
+        zeta1: p.zeta1,
+        omega_over_w1: point.omega_over_w1,
+        gap: 0.0,
+        printed_eq37_amplitude: false,
+    }
+    .model()?;
+    let sim = Simulator::new(model)?;
+    let o = orbit_coefficient(&sim, &DVector::zeros(2 * n3), p.transient, p.window)?;
+    Ok((o.kind, o.coefficient))
 }
 
 /// Computes every point (in parallel, deterministic for the seed whatever the thread
@@ -200,6 +276,15 @@ pub fn compute(p: &MapParams, progress: &dyn Progress) -> Result<MapData, Error>
             r
         })
         .collect::<Result<Vec<_>, Error>>()?;
+    let mut points = points;
+    let cited = cited_points(&points);
+    let thirds = cited
+        .par_iter()
+        .map(|&i| third_rung(p, &points[i]))
+        .collect::<Result<Vec<_>, Error>>()?;
+    for (i, t) in cited.into_iter().zip(thirds) {
+        points[i].third = Some(t);
+    }
     Ok(MapData {
         params: p.clone(),
         points,
@@ -218,7 +303,7 @@ impl Scene for EnergeticMap {
     const SUMMARY: &'static str = "r_E (eq 39) over the forcing frequency and the stop stiffness, d0 = 0, zeta1 = 0.01, N by stiffness matching";
     const CLAIM: &'static str = "Energetic coefficients of restitution are \"dependent on the dynamics observed\" (§7).";
     const CHAPTER: &'static str = "fig6.md";
-    const METHOD: &'static str = "at each (ω, k) the compliant model with N from stiffness matching (at least 10 modes, and as many as one contact needs for its observables to 1 %) from rest, 1000 periods discarded, eq (39) over one period of the orbit; recomputed with N + 10 modes (orbit and r_E within 0.01, else unconverged) and from a random start (else coexisting)";
+    const METHOD: &'static str = "at each (ω, k) the compliant model with N from stiffness matching (at least 10 modes, and as many as one contact needs for its observables to 1 %) from rest, 1000 periods discarded, eq (39) over one period of the orbit; recomputed with N + 10 modes (orbit and r_E within 0.01, else unconverged) and from a random start (else coexisting); each cited r_E also with N + 20 modes, its ± by Richardson extrapolation over the three N";
     const HEADLINE: &'static [(&'static str, &'static str)] = &[
         ("smallest converged r_E", "smallest r_E"),
         ("largest", "largest r_E"),
@@ -263,7 +348,6 @@ impl Scene for EnergeticMap {
         k.integer("coexisting points (lower bound)", count(&|c| *c == Cell::Coexisting));
         k.integer("no real value points", count(&|c| *c == Cell::NoRealValue));
         k.integer("no contact points", count(&|c| *c == Cell::NoContact));
-        let tol = d.params.convergence_tolerance;
         let values: Vec<(f64, &MapPoint)> = d
             .points
             .iter()
@@ -272,14 +356,25 @@ impl Scene for EnergeticMap {
                 _ => None,
             })
             .collect();
-        let basis = format!("agreement with N + {} modes (tolerance {tol})", d.params.extra_modes);
+        let extra = d.params.extra_modes;
         let at = |p: &MapPoint| format!("ω = {:.1}(β₁⁻)², k = {:.3e}k₁", p.omega_over_w1, p.k_over_k1);
+        // a converged value with its truncation ± (the book's one rule), or as text when
+        // the third rung left the orbit
+        let cite = |k: &mut KeyNumbers, key: &str, r: f64, p: &MapPoint, digits: usize| match p
+            .truncation(extra)
+        {
+            Some(t) => k.cited(key, r, digits, Uncertainty::new(t.plus_minus.max(1e-12), t.basis()), ""),
+            None => k.text(
+                key,
+                format!("{r:.3} (N + {} modes leaves the orbit: no convergence estimate)", 2 * extra),
+            ),
+        };
         if let Some((r, p)) = values.iter().min_by(|a, b| a.0.total_cmp(&b.0)) {
-            k.cited("smallest r_E", *r, 3, Uncertainty::new(tol, basis.clone()), "");
+            cite(&mut k, "smallest r_E", *r, p, 3);
             k.text("smallest r_E at", at(p));
         }
         if let Some((r, p)) = values.iter().max_by(|a, b| a.0.total_cmp(&b.0)) {
-            k.cited("largest r_E", *r, 3, Uncertainty::new(tol, basis.clone()), "");
+            cite(&mut k, "largest r_E", *r, p, 3);
             k.text("largest r_E at", at(p));
         }
         // along ω = 2(β₁⁻)², Figure 6(b)'s frequency: where r_E first reaches the paper's 0.74
@@ -308,29 +403,11 @@ impl Scene for EnergeticMap {
                 );
             }
         }
-        for p in d.points.iter().filter(|p| {
-            (p.omega_over_w1 - 2.0).abs() < 1e-9
-                && [100.0, 1000.0]
-                    .iter()
-                    .any(|k| (p.k_over_k1 / k - 1.0).abs() < 1e-9)
-        }) {
-            let key = format!("omega=2 k={:e}", p.k_over_k1);
+        for p in d.points.iter().filter(|p| on_omega_2_at_cited_k(p)) {
+            let key = format!("omega=2 k={:e} r_E", p.k_over_k1);
             match p.cell {
-                Cell::Value(r) => {
-                    let u = p
-                        .refined
-                        .1
-                        .and_then(|c| c.value())
-                        .map_or(tol, |b| (b - r).abs().max(1e-12));
-                    k.cited(
-                        format!("{key} r_E"),
-                        r,
-                        4,
-                        Uncertainty::new(u, format!("change with N + {} modes", d.params.extra_modes)),
-                        "",
-                    );
-                }
-                c => k.text(format!("{key} r_E"), format!("{c:?}")),
+                Cell::Value(r) => cite(&mut k, &key, r, p, 4),
+                c => k.text(key, format!("{c:?}")),
             }
         }
         k

@@ -21,6 +21,9 @@ use crate::results::scene::{Outcome, Progress, Rendered, Resolution, Scene, Verd
 use crate::analysis::orbit::{self, Settling};
 use crate::model::problems::{self, Forced};
 use crate::engine::sim::{Dense, Events, Simulator};
+use crate::base::random::SplitMix64;
+use nalgebra::DVector;
+use rayon::prelude::*;
 use serde::Serialize;
 
 /// A quantity of beam theory over the parameter ranges ([`exp::RANGES`]): its nominal
@@ -89,11 +92,51 @@ pub struct Variant {
     /// period over [`SPREAD_PERIODS`] periods (one period's sample would be a number that
     /// any round-off change moves; a cluster has no meaning there, its contacts straddle
     /// the period's ends).
-    pub spread: Option<(usize, usize)>,
+    pub spread: Option<Spread>,
 }
 
 /// Forcing periods over which a motion that does not settle is summarised.
 pub const SPREAD_PERIODS: i64 = 50;
+
+/// Starts of a spread: the settled state and this many copies of it perturbed by
+/// [`SPREAD_PERTURBATION`] (relative, per component).
+pub const SPREAD_STARTS: usize = 4;
+
+/// The perturbation of the spread's starts: below the settled state's own error (a stiff
+/// stop's micro-bounces leave ~10⁻¹² in the state against a 50-digit reference), so counts
+/// that differ between the starts are decided by round-off, not by the model.
+pub const SPREAD_PERTURBATION: f64 = 1e-12;
+
+/// The least and most contact intervals per period over [`SPREAD_PERIODS`] periods, each as
+/// the range over the settled state and [`SPREAD_STARTS`] perturbed starts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct Spread {
+    /// The fewest intervals in a period: (lowest, highest) over the starts.
+    pub fewest: (usize, usize),
+    /// The most intervals in a period: (lowest, highest) over the starts.
+    pub most: (usize, usize),
+}
+
+impl Spread {
+    /// Whether round-off decides a bound (the starts disagree).
+    pub fn round_off_decides(&self) -> bool {
+        self.fewest.0 != self.fewest.1 || self.most.0 != self.most.1
+    }
+}
+
+impl std::fmt::Display for Spread {
+    /// "1 to 12", or "1 to 7–12" where the starts disagree on a bound.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let bound = |(lo, hi): (usize, usize)| {
+            if lo == hi {
+                lo.to_string()
+            } else {
+                format!("{lo}–{hi}")
+            }
+        };
+        write!(f, "{} to {}", bound(self.fewest), bound(self.most))
+    }
+}
 
 /// The scene's result.
 #[derive(Debug, Clone, Serialize)]
@@ -285,17 +328,41 @@ fn cluster(contacts_ms: &[(f64, f64)]) -> f64 {
 }
 
 /// The least and most contact intervals per forcing period over the [`SPREAD_PERIODS`]
-/// periods after `settled` (a motion that does not settle: a summary that round-off does
-/// not move, where one period's sample does).
-fn spread_of(sim: &Simulator, settled: &orbit::Settled) -> Result<(usize, usize), Error> {
-    // one run over all the periods; a contact interval counts in the period it ends in, as
-    // in `contacts_of`
+/// periods after `settled`, from the settled state and from [`SPREAD_STARTS`] starts within
+/// [`SPREAD_PERTURBATION`] of it (a motion that does not settle: one period's sample is a
+/// number any round-off change moves, and so may the bounds — the starts show by how much).
+fn spread_of(sim: &Simulator, settled: &orbit::Settled) -> Result<Spread, Error> {
+    let counts = (0..=SPREAD_STARTS)
+        .into_par_iter()
+        .map(|i| {
+            let mut x = settled.state.clone();
+            if i > 0 {
+                let mut rng = SplitMix64::for_point(2013, i as u64, 0, 0);
+                x.iter_mut()
+                    .for_each(|v| *v *= 1.0 + SPREAD_PERTURBATION * rng.symmetric());
+            }
+            counts_per_period(sim, &x, settled.cycle)
+        })
+        .collect::<Result<Vec<_>, Error>>()?;
+    let range = |f: &dyn Fn(&(usize, usize)) -> usize| {
+        let v = counts.iter().map(f);
+        (v.clone().min().unwrap_or(0), v.max().unwrap_or(0))
+    };
+    Ok(Spread {
+        fewest: range(&|c| c.0),
+        most: range(&|c| c.1),
+    })
+}
+
+/// The least and most contact intervals in a period over [`SPREAD_PERIODS`] periods from
+/// `x` at cycle `cycle` (one run; an interval counts in the period it ends in, as in
+/// `contacts_of`).
+fn counts_per_period(sim: &Simulator, x: &DVector<f64>, cycle: i64) -> Result<(usize, usize), Error> {
     let mut events = Events::default();
-    let start = sim.clock_at_cycle(settled.cycle);
-    sim.run_from(&settled.state, start, SPREAD_PERIODS as u64, &mut events)?;
+    sim.run_from(x, sim.clock_at_cycle(cycle), SPREAD_PERIODS as u64, &mut events)?;
     let mut per_period = vec![0_usize; SPREAD_PERIODS as usize];
     for e in events.events.iter().filter(|e| !e.grazing && !e.entering) {
-        let i = e.clock.cycles - settled.cycle;
+        let i = e.clock.cycles - cycle;
         if (0..SPREAD_PERIODS).contains(&i) {
             per_period[i as usize] += 1;
         }
@@ -347,7 +414,7 @@ fn sensitivity(p: &ExperimentParams, tau: f64) -> Result<Vec<Variant>, Error> {
         let s = &p.settling;
         let (settled, _) = orbit::settle_until_periodic(
             &sim,
-            &nalgebra::DVector::zeros(2 * f.modes),
+            &DVector::zeros(2 * f.modes),
             s.chunk,
             s.window,
             s.max,
@@ -460,11 +527,20 @@ impl Scene for Experiment {
             k.text(format!("{short} orbit"), v.kind.to_string());
             match v.spread {
                 // not settled: the range over SPREAD_PERIODS periods, not one period's sample
-                Some((fewest, most)) => {
+                Some(spread) => {
                     k.text(
                         format!("{short} contact intervals per period over {SPREAD_PERIODS} periods"),
-                        format!("{fewest} to {most}"),
+                        spread.to_string(),
                     );
+                    if spread.round_off_decides() {
+                        k.text(
+                            format!("{short} contact intervals: the round-off check"),
+                            format!(
+                                "{} starts within {SPREAD_PERTURBATION:e} of the settled state; a bound they disagree on is given as their range",
+                                SPREAD_STARTS + 1
+                            ),
+                        );
+                    }
                 }
                 None => {
                     k.integer(format!("{short} contact intervals"), v.contacts_ms.len() as i64);
@@ -490,10 +566,15 @@ impl Scene for Experiment {
             .map(|v| {
                 let name = v.name.split(':').next().unwrap_or(&v.name);
                 match v.spread {
-                    Some((fewest, most)) => format!(
-                        "{name}: {} with {fewest} to {most} contact intervals per period over \
-                         {SPREAD_PERIODS} periods",
-                        v.kind
+                    Some(spread) => format!(
+                        "{name}: {} with {spread} contact intervals per period over \
+                         {SPREAD_PERIODS} periods{}",
+                        v.kind,
+                        if spread.round_off_decides() {
+                            " (a range where round-off decides a bound)"
+                        } else {
+                            ""
+                        }
                     ),
                     None => format!(
                         "{name}: {} with {} contact intervals in {:.1} ms",

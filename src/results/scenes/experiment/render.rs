@@ -185,7 +185,7 @@ pub fn variants_table(d: &ExperimentData) -> String {
         // a motion that does not settle: its range over the periods summarised, and no
         // cluster (its contacts straddle the period's ends)
         let (intervals, cluster) = match v.spread {
-            Some((fewest, most)) => (format!("{fewest} to {most}"), "—".to_string()),
+            Some(spread) => (spread.to_string(), "—".to_string()),
             None => (v.contacts_ms.len().to_string(), format!("{:.1}", v.cluster_ms)),
         };
         rows.push(vec![v.name.clone(), v.kind.to_string(), intervals, cluster]);

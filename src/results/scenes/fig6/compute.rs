@@ -2,6 +2,7 @@
 //! comparison, and the scan of panel (a).
 
 use super::{Case, Diagnostics, Fig6Data, Fig6Params, OneMode, Probe, Reading, ScanPoint};
+use crate::analysis::convergence::{truncation_error, TruncationError};
 use crate::analysis::energetic::{orbit_coefficient, OrbitCoefficient};
 use crate::error::Error;
 use crate::analysis::orbit::{self, random_state, OrbitKind, SplitMix64};
@@ -127,26 +128,35 @@ fn diagnostics(
     })
 }
 
-/// The largest change of r_E among the diagnostics that refine the published value (N
-/// above it, the longer transient, the looser tolerance, random starts); None when one of
-/// them changes the orbit or has no real r_E.
-fn uncertainty(base: &Probe, d: &Diagnostics, modes: usize) -> Option<f64> {
+/// The uncertainty of r_E: its truncation ± by the book's one rule
+/// ([`truncation_error`]: Richardson over the three finest N of the diagnostic's ladder)
+/// plus the largest change under the longer transient, the looser root tolerance and the
+/// random starts (settling and solver, not truncation). None when a refinement (an N above
+/// the published one, or one of those runs) changes the orbit or has no real r_E, or fewer
+/// than three N are on the published orbit.
+fn uncertainty(base: &Probe, d: &Diagnostics, modes: usize) -> Option<(f64, TruncationError)> {
     let r = base.value()?;
-    let refining = d
-        .by_modes
-        .iter()
-        .filter(|(n, _)| *n > modes)
-        .map(|(_, p)| p)
-        .chain([&d.long_transient, &d.loose_tolerance])
-        .chain(&d.random_starts);
+    let mut ladder = Vec::new();
+    for (n, probe) in &d.by_modes {
+        match (probe.kind == base.kind, probe.value()) {
+            (true, Some(v)) => ladder.push((*n, v)),
+            // a coarser N on another orbit leaves the ladder; a finer one leaves no estimate
+            _ if *n > modes => return None,
+            _ => {}
+        }
+    }
+    let truncation = truncation_error(modes, &ladder)?;
     let mut worst = 0.0_f64;
-    for probe in refining {
+    for probe in [&d.long_transient, &d.loose_tolerance]
+        .into_iter()
+        .chain(&d.random_starts)
+    {
         if probe.kind != base.kind {
             return None;
         }
         worst = worst.max((probe.value()? - r).abs());
     }
-    Some(worst)
+    Some((truncation.plus_minus + worst, truncation))
 }
 
 fn one_mode(
@@ -235,7 +245,7 @@ fn case(panel: &'static str, reading: Reading, p: &Fig6Params) -> Result<Case, E
         .iter()
         .fold((f64::NEG_INFINITY, f64::INFINITY), |(hi, lo), s| (hi.max(s.1), lo.min(s.1)));
     let diagnostics = diagnostics(panel, reading, p, &base)?;
-    let uncertainty = uncertainty(&base, &diagnostics, p.modes);
+    let (uncertainty, truncation) = uncertainty(&base, &diagnostics, p.modes).unzip();
     let one_mode = base
         .value()
         .map(|r| one_mode(panel, reading, r, p, scale))
@@ -265,6 +275,7 @@ fn case(panel: &'static str, reading: Reading, p: &Fig6Params) -> Result<Case, E
         extremes: (extremes.0 / scale.0, extremes.1 / scale.0),
         diagnostics,
         uncertainty,
+        truncation,
         one_mode,
         samples: samples
             .samples

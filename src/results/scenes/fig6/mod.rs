@@ -12,8 +12,9 @@
 //! as that ratio, and the ratio is also scanned.
 //!
 //! Every published r_E carries diagnostics (N = 10…40, a longer transient, a looser root
-//! tolerance, random starts); its uncertainty is the largest change among those that keep
-//! the orbit.
+//! tolerance, random starts); its uncertainty is its truncation ± by the book's one rule
+//! (Richardson over the three finest N, [`crate::analysis::convergence::truncation`]) plus
+//! the largest change under the other diagnostics, all of which must keep the orbit.
 
 mod branch;
 mod compute;
@@ -212,9 +213,11 @@ pub struct Case {
     pub extremes: (f64, f64),
     /// The diagnostics.
     pub diagnostics: Diagnostics,
-    /// The uncertainty of r_E from the diagnostics (None when a diagnostic changes the
-    /// orbit, or there is no r_E).
+    /// The uncertainty of r_E: its truncation ± plus the largest change under the other
+    /// diagnostics (None when a diagnostic changes the orbit, or there is no r_E).
     pub uncertainty: Option<f64>,
+    /// The truncation ± from the diagnostic's N (Richardson over the three finest).
+    pub truncation: Option<crate::analysis::convergence::TruncationError>,
     /// The one-mode comparison (when r_E exists).
     pub one_mode: Option<OneMode>,
     /// (t/T, d/A_free, mode-1 part φ₁(1)η₁/A_free, in contact) over one period.
@@ -292,20 +295,15 @@ impl Scene for Fig6 {
     fn key_numbers(d: &Fig6Data) -> KeyNumbers {
         let mut k = KeyNumbers::default();
         let p = &d.params;
-        let refined: Vec<String> = p
-            .convergence_modes
-            .iter()
-            .filter(|n| **n > p.modes)
-            .map(|n| n.to_string())
-            .collect();
-        let basis = format!(
-            "largest change under N = {} → {}, a {}-period transient, root tolerance {:e} and {} random starts",
-            p.modes,
-            refined.join(", "),
-            p.long_transient,
-            p.loose_root_tolerance,
-            p.random_starts
+        let others = format!(
+            "plus the largest change under a {}-period transient, root tolerance {:e} and {} random starts",
+            p.long_transient, p.loose_root_tolerance, p.random_starts
         );
+        let basis_of = |c: &Case| {
+            c.truncation
+                .as_ref()
+                .map_or(String::new(), |t| format!("{}; {others}", t.basis()))
+        };
         for c in &d.cases {
             let key = if c.panel == "b" {
                 "b".to_string()
@@ -326,7 +324,7 @@ impl Scene for Fig6 {
                     format!("{key} r_E"),
                     r,
                     4,
-                    Uncertainty::new(u.max(1e-12), basis.clone()),
+                    Uncertainty::new(u.max(1e-12), basis_of(c)),
                     "",
                 ),
                 _ => k.text(format!("{key} r_E"), r_text(&c.coefficient)),
@@ -362,33 +360,35 @@ impl Scene for Fig6 {
             .iter()
             .filter_map(|s| s.rest.value().map(|r| (s.gap_over_free_amplitude, r)))
             .collect();
-        // The scan runs at N = scan_modes only; its truncation error is estimated by the
-        // largest change of r_E that the panel (a) cases show under more modes, a longer
-        // transient and a looser root tolerance (settling alone, 1e-9, would claim far more).
-        let truncation = d
+        // The scan runs at N = scan_modes only: each of its points borrows the largest
+        // uncertainty of the panel (a) cases, the scan's neighbours, each a convergence
+        // estimate over N (settling alone, 1e-9, would claim far more).
+        let widest = d
             .cases
             .iter()
             .filter(|c| c.panel != "b")
-            .filter_map(|c| c.uncertainty)
-            .fold(1e-9, f64::max);
-        let scan_uncertainty = || {
-            Uncertainty::new(
-                truncation,
-                format!(
-                    "truncation: the largest change of r_E at the panel (a) points under {}",
-                    basis
-                        .strip_prefix("largest change under ")
-                        .unwrap_or(&basis)
+            .filter_map(|c| c.uncertainty.map(|u| (u, c)))
+            .max_by(|a, b| a.0.total_cmp(&b.0));
+        let cite_scan = |k: &mut KeyNumbers, key: &str, r: f64| match widest {
+            Some((u, c)) => k.cited(
+                key,
+                r,
+                3,
+                Uncertainty::new(
+                    u,
+                    format!("the largest uncertainty of the panel (a) cases: {}", basis_of(c)),
                 ),
-            )
+                "",
+            ),
+            None => k.text(key, format!("{r:.3} (no panel (a) case has a convergence estimate)")),
         };
         if let Some(&(rho, r)) = reals.iter().min_by(|a, b| a.1.total_cmp(&b.1)) {
-            k.cited("a scan smallest r_E", r, 3, scan_uncertainty(), "");
+            cite_scan(&mut k, "a scan smallest r_E", r);
             // a scan point: the parameter itself, exact
             k.text("a scan smallest r_E at d0/A_free", format!("{rho:.3}"));
         }
         if let Some(&(_, r)) = reals.iter().max_by(|a, b| a.1.total_cmp(&b.1)) {
-            k.cited("a scan largest r_E", r, 3, scan_uncertainty(), "");
+            cite_scan(&mut k, "a scan largest r_E", r);
         }
         let rhos: Vec<f64> = d.scan.iter().map(|s| s.gap_over_free_amplitude).collect();
         let one_one: Vec<usize> = (0..d.scan.len())
