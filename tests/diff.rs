@@ -358,3 +358,32 @@ fn full_precision_values_within_their_reproducibility_are_unchanged() {
     assert_eq!(code, 0, "{out}{err}");
     assert!(out.contains("moved within its uncertainty (1)"), "{out}");
 }
+
+#[test]
+fn a_folder_with_a_killed_write_is_named_as_such_not_as_empty() {
+    // Issue 36: a scene folder whose write was killed mid-swap (its journal left behind,
+    // the key numbers renamed aside) was reported as holding no key numbers at all.
+    let dir = scratch("killed");
+    let scene = dir.join("fig4");
+    std::fs::create_dir_all(&scene).unwrap();
+    std::fs::write(dir.join("old.json"), document("fig4", "book", &baseline())).unwrap();
+    std::fs::write(
+        scene.join(impacting_cantilever::results::output_set::JOURNAL),
+        r#"{"renames": []}"#,
+    )
+    .unwrap();
+    let (code, _, err) = cantilever(&["diff", "old.json", "fig4"], &dir);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("journal") && err.contains("killed"), "{err}");
+    assert!(!err.contains("holds none"), "{err}");
+    // with key numbers beside the journal (old and new may be mixed), the same refusal
+    std::fs::write(
+        scene.join("key_numbers.json"),
+        document("fig4", "book", &baseline()),
+    )
+    .unwrap();
+    let (code, _, err) = cantilever(&["diff", "old.json", "fig4"], &dir);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("journal"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -59,6 +59,19 @@ pub fn load(which: &str, arg: &Path) -> Result<Vec<SceneKeys>, ParameterError> {
     if !meta.is_dir() {
         return Ok(vec![load_file(which, arg)?]);
     }
+    // a write killed mid-swap: the folder may hold old and new files side by side
+    let journal = impacting_cantilever::results::output_set::JOURNAL;
+    if arg.join(journal).is_file() {
+        return Err(ParameterError::new(
+            which,
+            arg.display(),
+            &format!(
+                "a folder no write left half done (this one holds the journal {journal} of a \
+                 write that was killed: rerun the command that wrote it, which finishes or \
+                 rolls back that write first)"
+            ),
+        ));
+    }
     let single = arg.join("key_numbers.json");
     if single.is_file() {
         return Ok(vec![load_file(which, &single)?]);
