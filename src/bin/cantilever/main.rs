@@ -115,7 +115,7 @@ enum Command {
     /// ± its uncertainty and how it was obtained, its unit, the parameters, the method, the
     /// build, and the software and the paper as plain text and BibTeX. Reads the book's
     /// published numbers (instant); --recompute computes the scene at the book's
-    /// resolution instead (the atlas, the longest, takes about two minutes on two cores).
+    /// resolution instead (the atlas, the longest, takes about a minute on two cores).
     Cite {
         /// The scene's name (see `cantilever list`).
         scene: String,
@@ -192,7 +192,7 @@ enum Command {
     /// shard I/N of its rows, into a JSON file; `atlas-merge` combines the shards. The
     /// merged atlas is identical to the unsharded one (each row depends only on the
     /// parameters and its index), so the shards can run on any number of machines. The
-    /// book's 128 × 128 atlas takes about two minutes on two cores.
+    /// book's 128 × 128 atlas takes about a minute on two cores.
     Atlas {
         #[command(flatten)]
         args: atlas_cmd::AtlasArgs,

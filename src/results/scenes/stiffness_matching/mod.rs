@@ -462,10 +462,24 @@ impl Scene for StiffnessMatching {
         let tb = d.stiffness.iter().map(|a| a.observables.iter().filter(|c| c.two_basis_agree).count()).sum::<usize>();
         let slopes: Vec<f64> = d.loss_orders.iter().map(|o| o.entry_energy.0).collect();
         let (slo, shi) = slopes.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &p| (a.min(p), b.max(p)));
+        // "3.0" rather than "3.0 to 3.0" where the range is one value at the printed digits
+        let orders_text = {
+            let (a, b) = (format!("{lo:.1}"), format!("{hi:.1}"));
+            if a == b {
+                format!("observed order {a}")
+            } else {
+                format!("observed orders {a} to {b}")
+            }
+        };
+        let losses_text = if format!("{slo:.1}") == format!("{shi:.1}") {
+            format!("$N^{{{slo:.1}}}$")
+        } else {
+            format!("$N^{{{slo:.1}}}$ to $N^{{{shi:.1}}}$")
+        };
         Verdict {
             outcome: if agree == total && tb == total && converging < rigid { Outcome::Reproduced } else { Outcome::Partly },
             evidence: format!(
-                "at every k the Galerkin model converges in N (observed orders {lo:.1} to {hi:.1}, as the k/β_N³ tail predicts) and its limit agrees with the finite-element beam's in {agree} of {total} observables; the modes needed for 1 % (found in the scan) are {needed}; after one contact the velocity profile changes in L² by {converging:.1e} between the last two N at finite k (converging to the continuum's profile, tip included) and by {rigid:.2} under the rigid law (converging in L² only, to the pre-impact profile, like 2/√N, and not at the tip); the two-basis truncation converges to the same limits ({tb} of {total} agree), losing an energy fraction per switch into contact that falls like $N^{{{slo:.1}}}$ to $N^{{{shi:.1}}}$",
+                "at every k the Galerkin model converges in N ({orders_text}, as the k/β_N³ tail predicts) and its limit agrees with the finite-element beam's in {agree} of {total} observables; the modes needed for 1 % (found in the scan) are {needed}; after one contact the velocity profile changes in L² by {converging:.1e} between the last two N at finite k (converging to the continuum's profile, tip included) and by {rigid:.2} under the rigid law (converging in L² only, to the pre-impact profile, like 2/√N, and not at the tip); the two-basis truncation converges to the same limits ({tb} of {total} agree), losing an energy fraction per switch into contact that falls like {losses_text}",
                 needed = d
                     .stiffness
                     .iter()
