@@ -70,17 +70,27 @@ pub enum Richardson {
     Converged,
 }
 
-/// Richardson extrapolation of (f₁, f₂, f₃) with refinement ratio r (see [`Richardson`]).
-pub fn richardson(f1: f64, f2: f64, f3: f64, r: f64) -> Richardson {
+/// The cases without an order: three equal values, or differences of alternating sign (or
+/// one of them zero); None for a monotone ladder.
+fn not_monotone(f1: f64, f2: f64, f3: f64) -> Option<Richardson> {
     let (d21, d32) = (f2 - f1, f3 - f2);
     if d21 == 0.0 && d32 == 0.0 {
-        return Richardson::Converged;
+        return Some(Richardson::Converged);
     }
     if d21 == 0.0 || d32 == 0.0 || d21.signum() != d32.signum() {
         let lo = f1.min(f2).min(f3);
         let hi = f1.max(f2).max(f3);
-        return Richardson::Oscillatory { spread: hi - lo };
+        return Some(Richardson::Oscillatory { spread: hi - lo });
     }
+    None
+}
+
+/// Richardson extrapolation of (f₁, f₂, f₃) with refinement ratio r (see [`Richardson`]).
+pub fn richardson(f1: f64, f2: f64, f3: f64, r: f64) -> Richardson {
+    if let Some(outside) = not_monotone(f1, f2, f3) {
+        return outside;
+    }
+    let (d21, d32) = (f2 - f1, f3 - f2);
     let order = (d32 / d21).ln() / r.ln();
     let factor = r.powf(order) - 1.0;
     Richardson::Monotone {
@@ -99,15 +109,10 @@ pub fn richardson(f1: f64, f2: f64, f3: f64, r: f64) -> Richardson {
 /// check to reject.
 pub fn richardson_in_resolution(n: [f64; 3], f: [f64; 3]) -> Richardson {
     let [f1, f2, f3] = f;
+    if let Some(outside) = not_monotone(f1, f2, f3) {
+        return outside;
+    }
     let (d21, d32) = (f2 - f1, f3 - f2);
-    if d21 == 0.0 && d32 == 0.0 {
-        return Richardson::Converged;
-    }
-    if d21 == 0.0 || d32 == 0.0 || d21.signum() != d32.signum() {
-        let lo = f1.min(f2).min(f3);
-        let hi = f1.max(f2).max(f3);
-        return Richardson::Oscillatory { spread: hi - lo };
-    }
     let h = n.map(|n| 1.0 / n);
     let ratio = |p: f64| (h[2].powf(p) - h[1].powf(p)) / (h[1].powf(p) - h[0].powf(p));
     let target = d32 / d21;
