@@ -132,8 +132,17 @@ fn scan_panel<DB: DrawingBackend>(
             s.rest.value()
         }
     };
-    // headroom above the points for the legend
-    let top = d.scan.iter().filter_map(value).fold(0.0_f64, f64::max).max(0.05) * 2.4;
+    // headroom above the points for the legend, and room for the whole continued branch
+    // (its r_E reaches 1 where its contact vanishes)
+    let branch_top = d.gap_branch.as_ref().map_or(0.0, |b| {
+        b.points
+            .iter()
+            .filter_map(|q| if velocity { q.smallest_entry_velocity } else { q.r_e })
+            .filter(|v| v.is_finite())
+            .fold(0.0_f64, f64::max)
+    });
+    let top = (d.scan.iter().filter_map(value).fold(0.0_f64, f64::max).max(0.05) * 2.4)
+        .max(branch_top * 1.08);
     let mut chart = ChartBuilder::on(area)
         .caption(
             if velocity {
