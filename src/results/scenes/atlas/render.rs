@@ -205,25 +205,7 @@ pub fn plot(d: &AtlasData) -> Result<String, RenderError> {
                             BLACK.stroke_width(2),
                         ))
                         .map_err(drawing)?;
-                    // the label on a white ground, legible over any colour of the map
-                    let (pw, ph) = chart.plotting_area().dim_in_pixel();
-                    let (dx, dy) = ((w1 - w0) / pw as f64, (l1 - l0) / ph as f64);
-                    let at = (w0 + 0.02 * (w1 - w0), y - 0.07 * (l1 - l0));
-                    let text = "N = 10 suffices below";
-                    let width = 0.56 * 17.0 * text.chars().count() as f64 + 8.0;
-                    chart
-                        .draw_series(std::iter::once(Rectangle::new(
-                            [(at.0 - 4.0 * dx, at.1 + 3.0 * dy), (at.0 + width * dx, at.1 - 21.0 * dy)],
-                            WHITE.mix(0.85).filled(),
-                        )))
-                        .map_err(drawing)?;
-                    chart
-                        .draw_series(std::iter::once(Text::new(
-                            text,
-                            at,
-                            ("sans-serif", 17).into_font().color(&BLACK),
-                        )))
-                        .map_err(drawing)?;
+                    // no label on the map (it would cover cells): the caption names the line
                 }
             }
             draw_key(&key, &panel.key)?;
