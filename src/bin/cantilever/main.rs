@@ -22,7 +22,7 @@ mod stdio;
 use clap::{Parser, Subcommand};
 use impacting_cantilever::analysis::convergence;
 use impacting_cantilever::error::{self, ParameterError};
-use impacting_cantilever::model::{continuum, galerkin};
+
 use impacting_cantilever::results::scene::{self, Resolution};
 use impacting_cantilever::results::scenes;
 use impacting_cantilever::results::settings;
@@ -249,59 +249,8 @@ enum Command {
     },
 }
 
-/// Writes to stdout; a closed pipe (`cantilever … | head`) ends the program quietly
-/// instead of panicking.
-fn emit(text: &str) {
-    use std::io::Write;
-    let mut out = std::io::stdout().lock();
-    if let Err(e) = out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
-        if e.kind() == std::io::ErrorKind::BrokenPipe {
-            std::process::exit(0);
-        }
-        let _ = writeln!(std::io::stderr(), "error: cannot write to stdout: {e}");
-        std::process::exit(1);
-    }
-}
-
-/// Writes to stdout through `write` (buffered), as [`emit`] does: a closed pipe ends the
-/// program quietly, any other failure with exit 1.
-fn emit_with(write: impl FnOnce(&mut dyn std::io::Write) -> std::io::Result<()>) {
-    use std::io::Write;
-    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
-    if let Err(e) = write(&mut out).and_then(|()| out.flush()) {
-        if e.kind() == std::io::ErrorKind::BrokenPipe {
-            std::process::exit(0);
-        }
-        let _ = writeln!(std::io::stderr(), "error: cannot write to stdout: {e}");
-        std::process::exit(1);
-    }
-}
-
-/// A command's JSON document with the schema version and the command's name first (see
-/// [`scene::SCHEMA_VERSION`]).
-fn versioned(command: &str, value: serde_json::Value) -> serde_json::Value {
-    let mut out = serde_json::Map::new();
-    out.insert("schema_version".into(), scene::SCHEMA_VERSION.into());
-    out.insert("command".into(), command.into());
-    match value {
-        serde_json::Value::Object(fields) => {
-            for (k, v) in fields {
-                if k != "schema_version" {
-                    out.insert(k, v);
-                }
-            }
-        }
-        other => {
-            out.insert("result".into(), other);
-        }
-    }
-    serde_json::Value::Object(out)
-}
-
-/// A JSON document for stdout.
-fn json_text(command: &str, value: serde_json::Value) -> String {
-    serde_json::to_string_pretty(&versioned(command, value)).unwrap_or_default()
-}
+mod output;
+use output::{emit, emit_with, json_text, versioned};
 
 /// `println!` through [`emit`].
 macro_rules! outln {
@@ -317,6 +266,12 @@ macro_rules! errln {
         let _ = writeln!(std::io::stderr(), $($arg)*);
     }};
 }
+
+// after the macros above, which they use
+mod book_cmd;
+mod modes_cmd;
+use book_cmd::book_command;
+use modes_cmd::modes_command;
 
 /// On SIGINT, SIGTERM or SIGHUP (a closed terminal), deletes the temporary files of any
 /// write under way and exits with 128 + the signal, as a shell expects.
@@ -647,164 +602,5 @@ fn run(cli: Cli) -> Result<(), Failure> {
     }
 }
 
-fn modes_command(modes: usize, k_over_k1: f64, json: bool) -> Result<(), Failure> {
-    error::count_in_range("--modes (N)", modes, galerkin::MAX_MODES)?;
-    error::finite_non_negative("--stop-stiffness (k/k₁)", k_over_k1)?;
-    let k = k_over_k1 * galerkin::first_modal_stiffness();
-    if !k.is_finite() || k * modes as f64 > f64::MAX / 4.0 {
-        return Err(ParameterError::new(
-            "--stop-stiffness (k/k₁)",
-            k_over_k1,
-            "a finite number ≥ 0 up to 1e300",
-        )
-        .into());
-    }
-    let d: Vec<f64> = (1..=modes)
-        .map(continuum::modal_stiffness)
-        .collect::<Result<_, _>>()?;
-    let lambda = galerkin::contact_eigenvalues(&d, k);
-    let mut rows = Vec::new();
-    for (i, &l) in lambda.iter().enumerate() {
-        let exact = continuum::root(i + 1, k)?.powi(4);
-        rows.push(serde_json::json!({
-            "i": i + 1, "lambda": l, "exact": exact, "rel_error": (l - exact) / exact
-        }));
-        if !json {
-            outln!(
-                "i = {:>3}  lambda = {:>22.15e}  exact = {:>22.15e}  rel. error = {:>10.3e}",
-                i + 1,
-                l,
-                exact,
-                (l - exact) / exact
-            );
-        }
-    }
-    if json {
-        let doc = serde_json::json!({
-            "modes": modes,
-            "stop_stiffness_over_k1": k_over_k1,
-            "eigenvalues": rows,
-        });
-        outln!("{}", json_text("modes", doc));
-    }
-    Ok(())
-}
-
-#[cfg(feature = "book")]
-fn book_command(book_dir: &std::path::Path, only: Option<&[String]>) -> Result<(), Failure> {
-    for name in only.into_iter().flatten() {
-        scenes::find(name).map_err(|mut e| {
-            e.name = "--only".into();
-            e
-        })?;
-    }
-    let report = impacting_cantilever::results::book::build_only(
-        book_dir,
-        Resolution::Book,
-        only,
-        &progress::Bars::default(),
-    )
-    .map_err(|e| Failure::Other(format!("{e:#}")))?;
-    for (name, secs) in &report.scene_seconds {
-        errln!("scene {name:<18} {secs:>8.2} s");
-    }
-    for (name, date) in &report.reused {
-        errln!("scene {name:<18}   reused (current output of {date})");
-    }
-    for (name, why) in &report.refreshed {
-        errln!("scene {name:<18}   recomputed: {why}");
-    }
-    errln!("book built in {:.2} s", report.book_seconds);
-    errln!(
-        "done in {:.2} s: open {}",
-        report.total_seconds,
-        report.index.display()
-    );
-    Ok(())
-}
-
-#[cfg(not(feature = "book"))]
-fn book_command(_: &std::path::Path, _: Option<&[String]>) -> Result<(), Failure> {
-    Err(Failure::Other(
-        "this binary was built without the `book` feature; run: cargo run --release --features book -- book"
-            .into(),
-    ))
-}
-
 #[cfg(test)]
-mod tests {
-    /// The book's table of which options each command takes (*Output formats*) is the
-    /// command line's: every command, every option, nothing more.
-    #[test]
-    fn the_books_options_table_is_the_command_lines() {
-        use clap::{Args, CommandFactory};
-        let longs = |c: &clap::Command| -> Vec<String> {
-            let mut v: Vec<String> = c
-                .get_arguments()
-                .filter_map(|a| a.get_long().map(|l| format!("--{l}")))
-                .filter(|l| l != "--help")
-                .collect();
-            v.sort();
-            v
-        };
-        let model = longs(&super::model_args::ModelArgs::augment_args(
-            clap::Command::new("m"),
-        ));
-        let start = longs(&super::model_args::StartArgs::augment_args(
-            clap::Command::new("s"),
-        ));
-        let page = std::fs::read_to_string(
-            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("book/src/output-formats.md"),
-        )
-        .unwrap();
-        let section = page
-            .split("## Which options each command takes")
-            .nth(1)
-            .expect("the section");
-        let cli = super::Cli::command();
-        let mut seen = Vec::new();
-        let first_table = section
-            .split("\n\n")
-            .find(|chunk| chunk.starts_with("| command |"))
-            .expect("the table");
-        for line in first_table.lines().filter(|l| l.starts_with("| `")) {
-            let cells: Vec<&str> = line.split('|').map(str::trim).collect();
-            let name = cells[1].trim_matches('`');
-            let cmd = cli.find_subcommand(name).expect("a command");
-            let mut listed: Vec<String> = cells[4]
-                .split(", ")
-                .map(|o| o.trim_matches('`').to_string())
-                .filter(|o| o.starts_with("--"))
-                .collect();
-            if cells[2] == "yes" {
-                listed.extend(model.iter().cloned());
-            }
-            if cells[3] == "yes" {
-                listed.extend(start.iter().cloned());
-            }
-            listed.sort();
-            assert_eq!(listed, longs(cmd), "the book's row for `{name}`");
-            seen.push(name.to_string());
-        }
-        let mut all: Vec<String> = cli
-            .get_subcommands()
-            .map(|c| c.get_name().to_string())
-            .collect();
-        all.sort();
-        seen.sort();
-        assert_eq!(seen, all, "a row per command");
-        // and the list of the model and start options under the table
-        for o in model.iter().chain(&start) {
-            assert!(section.contains(&format!("`{o}`")), "{o} in the list");
-        }
-    }
-
-    /// clap checks its argument graph (unique group names, flag clashes) only in debug
-    /// builds; this runs those checks for every subcommand. It is a no-op in release, so
-    /// the test command runs it in the debug profile too.
-    #[test]
-    fn the_command_line_definition_is_consistent() {
-        use clap::CommandFactory;
-        super::Cli::command().debug_assert();
-    }
-}
+mod tests;
