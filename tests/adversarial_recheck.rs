@@ -2,8 +2,7 @@
 //! found after the fixes, each reproducer with the behaviour it must have now.
 #![cfg(feature = "cli")]
 
-#[path = "common/cli.rs"]
-mod cli;
+use crate::common::cli;
 use cli::cantilever;
 
 #[test]

@@ -10,8 +10,7 @@ use impacting_cantilever::model::problems::Forced;
 use impacting_cantilever::model::restitution;
 use nalgebra::DVector;
 
-#[path = "common/cli.rs"]
-mod cli;
+use crate::common::cli;
 use cli::cantilever;
 
 /// The one-mode rigid model of item 4: Newton's law r = 0.5, ζ₁ = 0.01, ω = 0.1(β₁⁻)², a
@@ -192,9 +191,9 @@ fn item_6_the_rigid_model_writes_its_dense_trajectory() {
     let _ = std::fs::remove_file(path);
 }
 
-/// A state file in the temporary directory.
+/// A state file in this run's scratch folder (removed by a later run once this one is gone).
 fn state_file(name: &str, state: &str) -> String {
-    let path = std::env::temp_dir().join(format!("{name}-{}.json", std::process::id()));
+    let path = cli::scratch(&format!("state-{name}")).join("state.json");
     std::fs::write(&path, state).unwrap();
     path.to_string_lossy().into_owned()
 }

@@ -3,8 +3,7 @@
 //! in the report; the files' items are in `adversarial_round3_files.rs`.
 #![cfg(feature = "cli")]
 
-#[path = "common/cli.rs"]
-mod cli;
+use crate::common::cli;
 use cli::{cantilever, cantilever_in, scratch};
 use std::process::Command;
 

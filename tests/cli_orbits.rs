@@ -3,8 +3,7 @@
 //! gap) and the sharded `atlas` with `atlas-merge`.
 #![cfg(feature = "cli")]
 
-#[path = "common/cli.rs"]
-mod cli;
+use crate::common::cli;
 use cli::cantilever;
 
 #[test]
@@ -160,9 +159,9 @@ fn atlas_shards_merge_into_the_unsharded_atlas() {
         "--resolution",
         "test",
         "--k-points",
-        "4",
+        "2",
         "--omega-points",
-        "3",
+        "2",
     ];
     let atlas = |shard: &str, out: &str| {
         let (code, _, err) =

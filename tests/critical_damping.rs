@@ -9,7 +9,7 @@ use impacting_cantilever::model::galerkin::{GalerkinModel, Region};
 use impacting_cantilever::model::problems::{self, Forced};
 use nalgebra::DVector;
 
-mod common;
+use crate::common;
 
 /// The Figure 4 model with N = 10 at another ζ₁ (the issue's `simulate` case).
 fn case(zeta1: f64) -> Forced {

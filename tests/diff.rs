@@ -3,8 +3,7 @@
 //! malformed), and on the committed published numbers against themselves.
 #![cfg(feature = "cli")]
 
-#[path = "common/cli.rs"]
-mod cli;
+use crate::common::cli;
 
 use impacting_cantilever::base::report::{KeyNumbers, Uncertainty};
 use impacting_cantilever::results::diff::{self, Change};

@@ -5,7 +5,7 @@ use impacting_cantilever::engine::flow::RegionFlow;
 use impacting_cantilever::model::galerkin::{self, Forcing, GalerkinModel, GalerkinParams, Region};
 use nalgebra::DVector;
 
-mod common;
+use crate::common;
 
 /// x(s) from expm of the augmented system ([`common::augmented`]) acting on
 /// [x₀; cos θ₀; sin θ₀; 1]: an independent exact solution of ẋ = Ax + b̂ cos ωt + ĉ.

@@ -11,8 +11,7 @@ use impacting_cantilever::model::spec::{
     Cantilever, DampingReading, ForcingSpec, GapUnit, Law, ModelSpec, Start, Stop, Structure,
 };
 
-#[path = "common/cli.rs"]
-mod common;
+use crate::common::cli as common;
 
 fn spec(modes: usize, gap: f64, omega: f64, stop: Stop) -> ModelSpec {
     ModelSpec {

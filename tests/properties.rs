@@ -14,8 +14,7 @@
 //! README's test command and CI) tries eight times as many. A failing case is printed with
 //! its inputs; proptest shrinks it first.
 
-#[path = "common/cli.rs"]
-mod cli;
+use crate::common::cli;
 
 use impacting_cantilever::analysis::find_orbit::{find_orbit, OrbitOptions};
 use impacting_cantilever::analysis::shooting::{LEAST_PERIOD, TOLERANCE};

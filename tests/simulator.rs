@@ -8,8 +8,7 @@ use impacting_cantilever::model::problems::{self, linear_response as oscillator}
 use nalgebra::DVector;
 use std::f64::consts::PI;
 
-mod common;
-use common::augmented;
+use crate::common::augmented;
 
 fn k1() -> f64 {
     galerkin::first_modal_stiffness()
@@ -466,6 +465,10 @@ fn expm_grid_events(m: &GalerkinModel, x0: &DVector<f64>, t_end: f64, dt: f64) -
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "published"),
+    ignore = "heavy: the README's test command runs it"
+)]
 fn stiff_cases_agree_with_an_exponential_grid_reference() {
     // N = 20 at 1e6 k₁ and at 1e8 k₁ (stop mode periods 5e-4 and 4e-5, events as close as
     // 1e-5 apart), 5 periods from rest: the same event sequence (33 and 73 events), event

@@ -8,8 +8,7 @@ use impacting_cantilever::results::scenes;
 use impacting_cantilever::results::settings::SettingKind;
 use std::path::Path;
 
-#[path = "common/cli.rs"]
-mod cli;
+use crate::common::cli;
 use cli::scratch;
 
 fn cantilever(args: &[&str], dir: &Path) -> (i32, String, String) {

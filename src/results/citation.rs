@@ -123,7 +123,7 @@ pub fn citation_cff() -> String {
 ";
     let mut s = String::from(
         "# Generated from Cargo.toml by src/results/citation.rs; do not edit by hand
-# (CANTILEVER_BLESS=1 cargo test --test cli citation rewrites it).
+# (CANTILEVER_BLESS=1 cargo test --test suite cli::citation rewrites it).
 cff-version: 1.2.0
 message: >-
   If you use numbers from this software, please cite it with the version and the commit

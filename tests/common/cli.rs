@@ -1,5 +1,5 @@
 //! The command line, run from the integration tests that need it (those compiled with
-//! feature `cli`): `#[path = "common/cli.rs"] mod cli;`.
+//! feature `cli`): `use crate::common::cli;`.
 #![allow(dead_code)]
 
 use std::process::Command;
