@@ -158,42 +158,86 @@ fn a_rigid_window_cut_short_is_printed_but_exits_1() {
 #[test]
 fn a_run_that_would_take_weeks_says_so_within_seconds() {
     // --periods 1e8 is legal; at a chattering stiff stop it would take weeks. The run
-    // projects its time after 2 s and says it on stderr (a pipe here, not a terminal).
+    // projects its time after 2 s and says it on stderr (a pipe here, not a terminal) — a
+    // simulation, and the transient before an orbit or a branch (which printed nothing);
+    // Ctrl-C then stops it at once, with status 130.
     use std::io::BufRead;
-    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_cantilever"))
-        .args([
-            "simulate",
-            "--modes",
-            "12",
-            "--zeta1",
-            "0.01",
-            "--omega",
-            "0.6",
-            "--stop-stiffness",
-            "1e12",
-            "--gap",
-            "0.003",
-            "--periods",
-            "100000000",
-        ])
-        .stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    let stderr = child.stderr.take().unwrap();
-    let (send, receive) = std::sync::mpsc::channel();
-    std::thread::spawn(move || {
-        let mut line = String::new();
-        let _ = std::io::BufReader::new(stderr).read_line(&mut line);
-        let _ = send.send(line);
-    });
-    // 2 s of measuring, and a debug build's first periods
-    let line = receive.recv_timeout(std::time::Duration::from_secs(120));
-    let _ = child.kill();
-    let _ = child.wait();
-    let line = line.expect("no projection within 120 s");
-    assert!(line.starts_with("simulate: periods: about "), "{line}");
-    assert!(line.contains("weeks more at the rate so far"), "{line}");
+    let model = [
+        "--modes",
+        "12",
+        "--zeta1",
+        "0.01",
+        "--omega",
+        "0.6",
+        "--stop-stiffness",
+        "1e12",
+        "--gap",
+        "0.003",
+        "--periods",
+        "100000000",
+    ];
+    let runs = [
+        (vec!["simulate"], "simulate: periods: about "),
+        (vec!["orbit"], "orbit: transient periods: about "),
+        (
+            vec!["continue", "--parameter", "omega", "--to", "0.7"],
+            "orbit: transient periods: about ",
+        ),
+    ];
+    // all three at once: each measures its own rate for 2 s
+    let children: Vec<_> = runs
+        .iter()
+        .map(|(command, _)| {
+            let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_cantilever"))
+                .args(command.iter().chain(&model))
+                .stdout(std::process::Stdio::null())
+                .stderr(std::process::Stdio::piped())
+                .spawn()
+                .unwrap();
+            let stderr = child.stderr.take().unwrap();
+            let (send, receive) = std::sync::mpsc::channel();
+            std::thread::spawn(move || {
+                for line in std::io::BufReader::new(stderr).lines() {
+                    let Ok(line) = line else { break };
+                    let _ = send.send(line);
+                }
+            });
+            (child, receive)
+        })
+        .collect();
+    for ((mut child, receive), (command, start)) in children.into_iter().zip(&runs) {
+        // 2 s of measuring, and a debug build's first periods
+        let line = receive.recv_timeout(std::time::Duration::from_secs(120));
+        let line = line.unwrap_or_else(|_| {
+            let _ = child.kill();
+            panic!("{command:?}: no projection within 120 s")
+        });
+        assert!(line.starts_with(start), "{command:?}: {line}");
+        assert!(
+            line.contains("weeks more at the rate so far"),
+            "{command:?}: {line}"
+        );
+        let pid = child.id().to_string();
+        let stopped = std::time::Instant::now();
+        assert!(std::process::Command::new("kill")
+            .args(["-INT", &pid])
+            .status()
+            .unwrap()
+            .success());
+        let status = child.wait().unwrap();
+        assert_eq!(status.code(), Some(130), "{command:?}");
+        // it stops within a segment of the run, not at the end of a 10⁸-period transient
+        assert!(
+            stopped.elapsed().as_secs_f64() < 20.0,
+            "{command:?}: {:?} after Ctrl-C",
+            stopped.elapsed()
+        );
+        let rest: Vec<String> = receive.try_iter().collect();
+        assert!(
+            rest.iter().any(|l| l.contains("interrupted")),
+            "{command:?}: {rest:?}"
+        );
+    }
 }
 
 #[test]

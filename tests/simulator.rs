@@ -411,7 +411,7 @@ fn certified_maximum_bounds_a_fine_sampling_on_impacting_orbits() {
     }
 }
 
-/// An independent reference for stiff cases, where the explicit DP5 reference is too slow:
+/// An independent reference for stiff cases, where the explicit DP5 integrator is too slow:
 /// exact matrix exponentials of the augmented region systems on a fixed grid (no
 /// eigenvectors, no bounds), each sign change of the gap refined by bisection. It misses
 /// contacts shorter than `dt`, so a too-coarse grid shows as a different event sequence.

@@ -68,7 +68,8 @@ pub fn find_orbit<'py>(
     )?;
     let (x0, from) = model.start(start, seed)?;
     let reporter = Reporter::new(None);
-    let result = py.detach(|| library::find_orbit(&model.built, &x0, &o));
+    // the transient reports to the reporter, which polls Ctrl-C and stops the run
+    let result = py.detach(|| library::find_orbit_reporting(&model.built, &x0, &o, &reporter));
     let f: FoundOrbit = reporter.finish(result)?;
     let d = PyDict::new(py);
     d.set_item("state", state(py, &f.state))?;

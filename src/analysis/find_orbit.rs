@@ -21,6 +21,7 @@ use crate::analysis::energetic::ContactWork;
 use crate::analysis::energetic::NO_CONTACT_FORCE;
 use crate::analysis::orbit::{detect_period_by, TRANSIENT, WINDOW};
 use crate::analysis::shooting::{self, PeriodicOrbit};
+use crate::base::progress::{Progress, Silent};
 use crate::engine::built::{BuiltModel, Variant};
 use crate::engine::map::PeriodMap;
 use crate::engine::rigid::RigidImpact;
@@ -164,9 +165,35 @@ pub fn find_orbit<M: PeriodMap + EnergeticRestitution + ?Sized>(
     start: &DVector<f64>,
     options: &OrbitOptions,
 ) -> Result<FoundOrbit, Error> {
+    find_orbit_reporting(model, start, options, &Silent)
+}
+
+/// [`find_orbit`], reporting the transient's periods to `progress` (a task "orbit:
+/// transient periods") and stopping with [`Error::Interrupted`] when it is cancelled: during
+/// the transient, and before the window, the shooting and the count. The orbit is the one
+/// [`find_orbit`] finds, bit for bit.
+///
+/// # Errors
+/// As [`find_orbit`]; [`Error::Interrupted`].
+pub fn find_orbit_reporting<M: PeriodMap + EnergeticRestitution + ?Sized>(
+    model: &M,
+    start: &DVector<f64>,
+    options: &OrbitOptions,
+    progress: &dyn Progress,
+) -> Result<FoundOrbit, Error> {
     check(options)?;
     model.check_state("start", start)?;
-    let x = model.advance(start, 0, options.transient, false)?.state;
+    let task = progress.task("orbit: transient periods", options.transient);
+    let x = model.advance_reporting(start, 0, options.transient, task.as_ref(), progress)?;
+    drop(task);
+    let stop = || {
+        if progress.cancelled() {
+            Err(Error::Interrupted)
+        } else {
+            Ok(())
+        }
+    };
+    stop()?;
     let (x, m) = match options.period {
         Some(m) => (x, m),
         None => {
@@ -191,7 +218,9 @@ pub fn find_orbit<M: PeriodMap + EnergeticRestitution + ?Sized>(
             (w.state, m)
         }
     };
+    stop()?;
     let orbit = shooting::shoot_within(model, &x, m, options.max_iterations)?;
+    stop()?;
     // the count on further periods of the orbit: one period's count is not exact where
     // round-off decides an event
     let on = model.advance(&orbit.state_vector(), 0, COUNTED_REPEATS * m, true)?;

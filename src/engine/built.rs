@@ -4,6 +4,7 @@
 //! model computed (the command line once continued a compliant branch when asked for a
 //! rigid one).
 
+use crate::base::progress::{Progress, Task};
 use crate::engine::map::{PeriodMap, Periods};
 use crate::engine::rigid::RigidImpact;
 use crate::engine::sim::Simulator;
@@ -118,6 +119,19 @@ impl PeriodMap for BuiltModel {
         match &self.variant {
             Variant::Compliant(m) => m.advance(x, cycle, periods, record),
             Variant::Rigid(m) => m.advance(x, cycle, periods, record),
+        }
+    }
+    fn advance_reporting(
+        &self,
+        x: &DVector<f64>,
+        cycle: i64,
+        periods: u64,
+        task: &dyn Task,
+        progress: &dyn Progress,
+    ) -> Result<DVector<f64>, Error> {
+        match &self.variant {
+            Variant::Compliant(m) => m.advance_reporting(x, cycle, periods, task, progress),
+            Variant::Rigid(m) => m.advance_reporting(x, cycle, periods, task, progress),
         }
     }
     fn residual(&self, a: &DVector<f64>, b: &DVector<f64>) -> f64 {

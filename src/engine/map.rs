@@ -10,8 +10,10 @@
 //! project the state, and the projection's derivative at a switch is not derived here)
 //! says so through [`PeriodMap::map_with_jacobian`]'s error rather than guess.
 
+use crate::base::progress::{Progress, Task};
 use crate::engine::rigid::{Outcome, RigidEvent, RigidImpact};
 use crate::engine::sim::{Clock, Events, Simulator, Strobe};
+use crate::engine::ticker::Ticker;
 use crate::engine::two_basis::{TwoBasisModel, TwoBasisState};
 use crate::error::{Error, ParameterError};
 use crate::model::galerkin::Region;
@@ -75,6 +77,28 @@ pub trait PeriodMap: Sync {
         periods: u64,
         record: bool,
     ) -> Result<Periods, Error>;
+    /// P^`periods` of `x` from cycle `cycle`, as [`Self::advance`] without recording gives
+    /// it, reporting the periods done to `task` and ending with [`Error::Interrupted`] when
+    /// `progress` is cancelled (a transient of 10⁸ periods must show its progress and stop
+    /// on Ctrl-C). By default the whole run is one report at its end.
+    ///
+    /// # Errors
+    /// As [`Self::advance`]; [`Error::Interrupted`].
+    fn advance_reporting(
+        &self,
+        x: &DVector<f64>,
+        cycle: i64,
+        periods: u64,
+        task: &dyn Task,
+        progress: &dyn Progress,
+    ) -> Result<DVector<f64>, Error> {
+        if progress.cancelled() {
+            return Err(Error::Interrupted);
+        }
+        let state = self.advance(x, cycle, periods, false)?.state;
+        task.advance(periods);
+        Ok(state)
+    }
     /// How far apart two states are, relative to their size (∞ if they cannot be the same
     /// point of the orbit).
     fn residual(&self, a: &DVector<f64>, b: &DVector<f64>) -> f64 {
@@ -138,6 +162,7 @@ impl PeriodMap for Simulator {
         record: bool,
     ) -> Result<Periods, Error> {
         let start = self.clock_at_cycle(cycle);
+        // (`advance_reporting` makes this same run, observed)
         if !record {
             let state = self.run_from(x, start, periods, &mut ())?.state;
             return Ok(Periods {
@@ -163,6 +188,19 @@ impl PeriodMap for Simulator {
             entry_velocities,
             chatters: 0,
         })
+    }
+    fn advance_reporting(
+        &self,
+        x: &DVector<f64>,
+        cycle: i64,
+        periods: u64,
+        task: &dyn Task,
+        progress: &dyn Progress,
+    ) -> Result<DVector<f64>, Error> {
+        let mut ticker = Ticker::new(task, progress, cycle);
+        Ok(self
+            .run_from(x, self.clock_at_cycle(cycle), periods, &mut ticker)?
+            .state)
     }
     fn map_with_jacobian(
         &self,
@@ -224,25 +262,7 @@ impl PeriodMap for RigidImpact {
                 Clock::at_cycle(period, a),
                 Clock::at_cycle(period, b),
             )?;
-            match run.outcome {
-                Outcome::Completed => {}
-                Outcome::Chatter(t) => {
-                    return Err(Error::Chatter(format!(
-                        "{} chatters at t = {t:.6e} under a law with no sticking limit \
-                         (N > 1 with [R]_N or [R]_C): the state after it is not defined",
-                        self.name()
-                    )))
-                }
-                Outcome::ImpactLimit => {
-                    return Err(Error::Chatter(format!(
-                        "{} made more than {} impacts between sticking phases, or {} in one \
-                         forcing period",
-                        self.name(),
-                        self.settings.max_impacts,
-                        self.settings.max_impacts_per_period
-                    )))
-                }
-            }
+            completed(self, run.outcome)?;
             if record {
                 let mut count = 0;
                 for e in &run.events {
@@ -262,12 +282,50 @@ impl PeriodMap for RigidImpact {
         }
         Ok(out)
     }
+    fn advance_reporting(
+        &self,
+        x: &DVector<f64>,
+        cycle: i64,
+        periods: u64,
+        task: &dyn Task,
+        progress: &dyn Progress,
+    ) -> Result<DVector<f64>, Error> {
+        // the one run `advance` makes without recording, observed
+        let period = self.sim.period();
+        let run = self.run_observed(
+            x,
+            Clock::at_cycle(period, cycle),
+            Clock::at_cycle(period, cycle + periods as i64),
+            &mut Ticker::new(task, progress, cycle),
+        )?;
+        completed(self, run.outcome)?;
+        Ok(run.state)
+    }
     fn map_with_jacobian(
         &self,
         x: &DVector<f64>,
         m: u64,
     ) -> Result<(DVector<f64>, DMatrix<f64>, u64), Error> {
         RigidImpact::map_with_jacobian(self, x, m)
+    }
+}
+
+/// A rigid run that did not complete, as the error of the period map: after a chatter with
+/// no sticking limit, or past the impact limit, the state is not defined.
+fn completed(model: &RigidImpact, outcome: Outcome) -> Result<(), Error> {
+    match outcome {
+        Outcome::Completed => Ok(()),
+        Outcome::Chatter(t) => Err(Error::Chatter(format!(
+            "{} chatters at t = {t:.6e} under a law with no sticking limit (N > 1 with [R]_N \
+             or [R]_C): the state after it is not defined",
+            model.name()
+        ))),
+        Outcome::ImpactLimit => Err(Error::Chatter(format!(
+            "{} made more than {} impacts between sticking phases, or {} in one forcing period",
+            model.name(),
+            model.settings.max_impacts,
+            model.settings.max_impacts_per_period
+        ))),
     }
 }
 

@@ -6,4 +6,5 @@ pub mod flow;
 pub mod map;
 pub mod rigid;
 pub mod sim;
+pub mod ticker;
 pub mod two_basis;

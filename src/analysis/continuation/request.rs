@@ -1,5 +1,5 @@
 //! Continuation as one call from a model's specification, for every front end: the start
-//! orbit found as [`find_orbit`] finds it, then the branch through it in k/k₁, ω/(β₁⁻)² or
+//! orbit found as [`find_orbit`](crate::analysis::find_orbit::find_orbit) finds it, then the branch through it in k/k₁, ω/(β₁⁻)² or
 //! d₀, both ways unless asked for one. The command line's `continue` and the Python
 //! package's `continue_branch` are this function with their names for its options.
 //!
@@ -10,7 +10,7 @@
 //! parameters are not in the units k/k₁, ω/(β₁⁻)².
 
 use super::{continue_branch, trace, Branch, Family, Parameter, Settings};
-use crate::analysis::find_orbit::{find_orbit, OrbitOptions};
+use crate::analysis::find_orbit::{find_orbit_reporting, OrbitOptions};
 use crate::base::progress::Progress;
 use crate::engine::built::BuiltModel;
 use crate::error::{self, Error, ParameterError};
@@ -93,7 +93,7 @@ fn at(spec: &ModelSpec, parameter: Parameter, p: f64) -> ModelSpec {
 /// # Errors
 /// [`Error::Parameter`] for options out of range, a start value of the parameter that is
 /// not > 0, or a `to` the model does not accept; [`Error::Unsupported`] for the rigid model
-/// or the oscillator; the start orbit's errors ([`find_orbit`]); [`Error::NotConverged`]
+/// or the oscillator; the start orbit's errors ([`find_orbit`](crate::analysis::find_orbit::find_orbit)); [`Error::NotConverged`]
 /// when the branch cannot be started; [`Error::Interrupted`] when `progress` is cancelled.
 pub fn continue_from(
     spec: &ModelSpec,
@@ -158,7 +158,7 @@ pub fn continue_from(
     }
     let model = BuiltModel::build(spec)?;
     let (x0, _) = model.start(start)?;
-    let first = find_orbit(&model, &x0, orbit)?;
+    let first = find_orbit_reporting(&model, &x0, orbit, progress)?;
     let task = progress.task("continuation: orbits", 0);
     let family = Family::new(options.parameter, |p| {
         task.advance(1);

@@ -17,9 +17,10 @@ use crate::base::progress::{Progress, Task};
 use crate::engine::built::{BuiltModel, Variant};
 use crate::engine::rigid::{Outcome, RigidEvent, RigidImpact, RigidObserver};
 use crate::engine::sim::{
-    Clock, DenseStates, Energy, EnergyBudget, EventView, Observer, SegmentView, Simulator, Stats,
-    Strobe, TipMax, TipMaximum,
+    Clock, DenseStates, Energy, EnergyBudget, EventView, Observer, Simulator, Strobe, TipMax,
+    TipMaximum,
 };
+use crate::engine::ticker::Ticker;
 use crate::error::{Error, ParameterError};
 use crate::model::ranges::Count;
 use nalgebra::DVector;
@@ -413,41 +414,6 @@ fn too_many_events(options: &SimulateOptions, events: usize, modes: usize) -> Er
     .into()
 }
 
-/// Reports whole periods as segments pass them, and passes the caller's cancellation to
-/// the run (it asks for nothing else, so it changes nothing of the run).
-struct Ticker<'a> {
-    task: &'a dyn Task,
-    progress: &'a dyn Progress,
-    done: i64,
-}
-
-impl Observer for Ticker<'_> {
-    fn begin(&mut self, _: &Simulator, clock: &Clock, _: &DVector<f64>) {
-        self.done = clock.cycles;
-    }
-    fn segment(&mut self, seg: &SegmentView) {
-        let mut at = seg.start;
-        at.advance(seg.end);
-        self.tick(at.cycles);
-    }
-    fn end(&mut self, _: &Simulator, clock: &Clock, _: &DVector<f64>, _: &Stats) {
-        // where the run ends, exactly (a segment's end may round to just before it)
-        self.tick(clock.cycles);
-    }
-    fn interrupted(&self) -> bool {
-        self.progress.cancelled()
-    }
-}
-
-impl Ticker<'_> {
-    fn tick(&mut self, now: i64) {
-        if now > self.done {
-            self.task.advance((now - self.done) as u64);
-            self.done = now;
-        }
-    }
-}
-
 /// The window's events with their modal velocities, up to the cap.
 #[derive(Default)]
 struct EventLog {
@@ -490,11 +456,7 @@ fn compliant(
     let mut add = |b: &EnergyBudget| {
         budget = Some(budget.map_or(*b, |a| a.then(b)));
     };
-    let mut ticker = Ticker {
-        task,
-        progress,
-        done: 0,
-    };
+    let mut ticker = Ticker::new(task, progress, 0);
     let budgeted = || options.energy.then(Energy::default);
     // the transient, in one run
     let mut energy = budgeted();

@@ -2,7 +2,8 @@
 //! call the Python package makes) → JSON or text.
 
 use crate::model_args::{ModelArgs, StartArgs};
-use impacting_cantilever::analysis::find_orbit::{find_orbit, FoundOrbit, OrbitOptions};
+use crate::progress::Bars;
+use impacting_cantilever::analysis::find_orbit::{find_orbit_reporting, FoundOrbit, OrbitOptions};
 use impacting_cantilever::analysis::shooting::PeriodicOrbit;
 use impacting_cantilever::engine::built::BuiltModel;
 use impacting_cantilever::error::Error;
@@ -30,7 +31,9 @@ pub struct OrbitArgs {
 /// How the start orbit is found (`orbit` and `continue`).
 #[derive(Debug, Clone, clap::Args)]
 pub struct SearchArgs {
-    /// Transient: forcing periods run from the start before the orbit is read (0 to 1e8).
+    /// Transient: forcing periods run from the start before the orbit is read (0 to 1e8). A
+    /// transient that projects to take over 10 minutes says so after 2 s, with the time it
+    /// projects.
     #[arg(long, value_parser = crate::model_args::whole, default_value_t = DEFAULTS.transient)]
     pub periods: u64,
     /// The window: periods whose stroboscopic samples give the period m (2 to 10 000; m is
@@ -117,7 +120,7 @@ pub fn run(args: &OrbitArgs) -> Result<Report, Error> {
     let model = BuiltModel::build(&spec)?;
     let (x0, from) = model.start(&start)?;
     let options = args.search.options(args.energetic_restitution);
-    let found: FoundOrbit = find_orbit(&model, &x0, &options)?;
+    let found: FoundOrbit = find_orbit_reporting(&model, &x0, &options, &Bars::default())?;
     let wall_seconds = started.elapsed().as_secs_f64();
     let (law, restitution, k) = match spec.stop {
         Stop::Rigid { law, restitution } => (Some(law.name()), Some(restitution), None),

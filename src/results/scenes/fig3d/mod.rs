@@ -176,7 +176,7 @@ impl Scene for Fig3d {
         "The post-impact velocity profile of the rigid-limit law does not converge as $N \\to \\infty$.";
     const CHAPTER: &'static str = "fig3d.md";
     const METHOD: &'static str = "the post-impact modal velocities −[R]e₁ of eq (30) in closed form for [R]_N (eq 29) and [R]_C (eq 12, equally spaced points), the profile summed over the modes on 801 points; L² norms exactly from the orthonormal modes";
-    const HEADLINE: &'static [(&'static str, &'static str)] = &[("sup distance from the pre-impact profile, N = 100", "stiffness-limit N=100 max_distance_from_phi1"), ("L² distance, N = 100", "stiffness-limit N=100 l2_distance_from_phi1")];
+    const HEADLINE: &'static [(&'static str, &'static str)] = &[("not in the sup norm: distance from the pre-impact profile, N = 100", "stiffness-limit N=100 max_distance_from_phi1"), ("L² distance, N = 100", "stiffness-limit N=100 l2_distance_from_phi1")];
     type Params = Fig3dParams;
     type Data = Fig3dData;
 

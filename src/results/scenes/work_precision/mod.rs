@@ -82,7 +82,7 @@ impl WorkPrecisionParams {
 /// One run of one method at one setting.
 #[derive(Debug, Clone, Serialize)]
 pub struct WorkPoint {
-    /// "exact" or "DP5 reference".
+    /// "exact" or "DP5" (Dormand–Prince 5(4); the reference of both is the 40-digit solution).
     pub method: String,
     /// The root tolerance or rtol.
     pub tolerance: f64,
@@ -300,7 +300,7 @@ pub fn compute(p: &WorkPrecisionParams) -> Result<WorkPrecisionData, Error> {
         let ev: Vec<(f64, bool)> = r.events.iter().map(|e| (e.time, e.entering)).collect();
         let (same, ee, se) = compare(&r.state, &ev);
         points.push(WorkPoint {
-            method: "DP5 reference".into(),
+            method: "DP5".into(),
             tolerance: rtol,
             seconds: secs,
             events: ev.len(),
@@ -357,7 +357,7 @@ impl Scene for WorkPrecision {
     const GIST: &'static str = "— (no error estimates given)";
     const GROUP: Group = Group::Methods;
     const SUMMARY: &'static str =
-        "error against run time: exact simulator vs DP5 reference, Fig 4 model, N = 10";
+        "error against run time: exact simulator vs DP5 (Dormand–Prince 5(4)), Fig 4 model, N = 10";
     const CLAIM: &'static str = "— (the paper gives no error estimates)";
     const CHAPTER: &'static str = "work-precision.md";
     const TIMED: bool = true;

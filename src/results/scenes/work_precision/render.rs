@@ -58,7 +58,7 @@ pub fn plot(d: &WorkPrecisionData) -> Result<String, RenderError> {
                 .y_label_formatter(&power_of_ten)
                 .draw()
                 .map_err(drawing)?;
-            for (s, method) in ["exact", "DP5 reference"].iter().enumerate() {
+            for (s, method) in ["exact", "DP5"].iter().enumerate() {
                 let c = palette(s);
                 let pts: Vec<(f64, f64)> = d
                     .points
