@@ -129,6 +129,53 @@ fn events_strobe_and_final_state_are_the_same_bits_whatever_is_recorded() {
     }
 }
 
+/// Progress observed in whole periods (what `orbit` and `continue` report during a
+/// transient) changes nothing: the state after the transient is the unobserved run's, bit for
+/// bit, for every model of the grid, and the periods reported add up to the transient.
+#[test]
+fn a_transient_reported_in_periods_is_the_same_run() {
+    use impacting_cantilever::base::progress::{Progress, Task};
+    use impacting_cantilever::engine::map::PeriodMap;
+    use std::sync::atomic::{AtomicU64, Ordering};
+    #[derive(Default)]
+    struct Count(AtomicU64);
+    impl Task for Count {
+        fn advance(&self, units: u64) {
+            self.0.fetch_add(units, Ordering::Relaxed);
+        }
+    }
+    for spec in grid() {
+        let model = BuiltModel::build(&spec).unwrap();
+        let (x0, _) = model.start(&Start::Rest).unwrap();
+        let plain = model.advance(&x0, 3, 17, false).unwrap().state;
+        let count = Count::default();
+        let reported = model
+            .advance_reporting(&x0, 3, 17, &count, &Silent)
+            .unwrap();
+        assert_eq!(plain.as_slice(), reported.as_slice(), "{}", model.name());
+        assert_eq!(count.0.load(Ordering::Relaxed), 17, "{}", model.name());
+        // a cancelled caller stops it
+        struct Cancelled;
+        impl Progress for Cancelled {
+            fn task(&self, _: &str, _: u64) -> Box<dyn Task + '_> {
+                Box::new(Silent)
+            }
+            fn cancelled(&self) -> bool {
+                true
+            }
+        }
+        let stopped = model.advance_reporting(&x0, 3, 17, &count, &Cancelled);
+        assert!(
+            matches!(
+                stopped,
+                Err(impacting_cantilever::error::Error::Interrupted)
+            ),
+            "{}",
+            model.name()
+        );
+    }
+}
+
 #[test]
 fn the_issues_rigid_reproducers_agree_with_and_without_dense_output() {
     // `simulate --model rigid --law impulse-response --restitution 0 --modes 3 --gap 0.5
