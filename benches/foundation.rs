@@ -40,5 +40,28 @@ fn contact_eigenproblem(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, roots, contact_eigenproblem);
+/// `cantilever diff`'s comparison of two key-number sets: linear in the keys (a search per
+/// key took 70 s at 80 000); compare the times at 40 000 and 80 000.
+fn diff_keys(c: &mut Criterion) {
+    use impacting_cantilever::base::report::KeyNumbers;
+    use impacting_cantilever::results::diff;
+    let make = |n: usize| {
+        let mut k = KeyNumbers::default();
+        for i in 0..n {
+            k.integer(format!("k{i}"), i as i64);
+        }
+        k
+    };
+    let mut g = c.benchmark_group("diff");
+    g.sample_size(10);
+    for n in [40_000, 80_000] {
+        let (a, b) = (make(n), make(n));
+        g.bench_with_input(BenchmarkId::from_parameter(n), &n, |bench, _| {
+            bench.iter(|| diff::compare_numbers("big", &a, &b))
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, roots, contact_eigenproblem, diff_keys);
 criterion_main!(benches);

@@ -172,3 +172,29 @@ fn the_band_tables_of_lib_rs_and_contributing_name_every_module() {
         assert_eq!(bands_seen, 5);
     }
 }
+
+/// With `autotests = false` (Cargo.toml), a file of `tests/` that neither `tests/suite.rs`
+/// names as a module nor Cargo.toml declares as a test target would never be compiled: its
+/// tests would pass by not running. Every file is one or the other.
+#[test]
+fn every_test_file_is_compiled() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let suite = std::fs::read_to_string(root.join("tests/suite.rs")).unwrap();
+    let manifest = std::fs::read_to_string(root.join("Cargo.toml")).unwrap();
+    let mut missing = Vec::new();
+    for e in std::fs::read_dir(root.join("tests")).unwrap() {
+        let name = e.unwrap().file_name().to_string_lossy().into_owned();
+        let Some(stem) = name.strip_suffix(".rs") else {
+            continue;
+        };
+        let a_module = suite.lines().any(|l| l.trim() == format!("mod {stem};"));
+        let a_target = manifest.contains(&format!("path = \"tests/{name}\""));
+        if !a_module && !a_target {
+            missing.push(name);
+        }
+    }
+    assert!(
+        missing.is_empty(),
+        "not compiled: {missing:?} (add `mod NAME;` to tests/suite.rs)"
+    );
+}
