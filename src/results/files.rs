@@ -479,12 +479,23 @@ impl Drop for OutputLock {
     }
 }
 
+/// Scratch folders of this band's unit tests.
 #[cfg(test)]
-mod tests {
-    use super::*;
+pub(crate) mod scratch {
+    use std::path::{Path, PathBuf};
 
-    /// A scratch folder, removed when the test passes (kept for a look when it fails).
-    struct Scratch(PathBuf);
+    /// A scratch folder `{prefix}-{name}-{pid}`, removed when the test passes (kept for a
+    /// look when it fails).
+    pub struct Scratch(PathBuf);
+
+    impl Scratch {
+        pub fn new(prefix: &str, name: &str) -> Self {
+            let d = std::env::temp_dir().join(format!("{prefix}-{name}-{}", std::process::id()));
+            let _ = std::fs::remove_dir_all(&d);
+            std::fs::create_dir_all(&d).unwrap();
+            Scratch(d)
+        }
+    }
 
     impl std::ops::Deref for Scratch {
         type Target = Path;
@@ -500,12 +511,14 @@ mod tests {
             }
         }
     }
+}
 
-    fn scratch(name: &str) -> Scratch {
-        let d = std::env::temp_dir().join(format!("files-{name}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&d);
-        std::fs::create_dir_all(&d).unwrap();
-        Scratch(d)
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scratch(name: &str) -> crate::results::files::scratch::Scratch {
+        crate::results::files::scratch::Scratch::new("files", name)
     }
 
     #[test]

@@ -425,29 +425,8 @@ fn remove_orphans(dir: &Path) {
 mod tests {
     use super::*;
 
-    /// A scratch folder, removed when the test passes (kept for a look when it fails).
-    struct Scratch(PathBuf);
-
-    impl std::ops::Deref for Scratch {
-        type Target = Path;
-        fn deref(&self) -> &Path {
-            &self.0
-        }
-    }
-
-    impl Drop for Scratch {
-        fn drop(&mut self) {
-            if !std::thread::panicking() {
-                let _ = std::fs::remove_dir_all(&self.0);
-            }
-        }
-    }
-
-    fn scratch(name: &str) -> Scratch {
-        let d = std::env::temp_dir().join(format!("set-{name}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&d);
-        std::fs::create_dir_all(&d).unwrap();
-        Scratch(d)
+    fn scratch(name: &str) -> crate::results::files::scratch::Scratch {
+        crate::results::files::scratch::Scratch::new("set", name)
     }
 
     fn set(v: &str) -> Vec<(String, String)> {
