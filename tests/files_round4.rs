@@ -278,11 +278,17 @@ fn item_2_an_interruption_names_the_outputs_written_whole() {
         .status()
         .unwrap()
         .success());
-    let interrupt_when = |args: &[&str], ready: &dyn Fn() -> bool| {
-        let child = Command::new(env!("CARGO_BIN_EXE_cantilever"))
+    // `read_stdout: false` leaves standard output a pipe nobody reads (a large report then
+    // blocks after the files are written)
+    let interrupt_when = |args: &[&str], ready: &dyn Fn() -> bool, read_stdout: bool| {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_cantilever"))
             .args(args)
             .current_dir(&d)
-            .stdout(Stdio::null())
+            .stdout(if read_stdout {
+                Stdio::null()
+            } else {
+                Stdio::piped()
+            })
             .stderr(Stdio::piped())
             .spawn()
             .unwrap();
@@ -297,34 +303,64 @@ fn item_2_an_interruption_names_the_outputs_written_whole() {
             .status()
             .unwrap()
             .success());
+        // drained only now, after the signal
+        let stdout = child.stdout.take();
+        let drain = std::thread::spawn(move || {
+            if let Some(mut o) = stdout {
+                let _ = std::io::copy(&mut o, &mut std::io::sink());
+            }
+        });
         let out = child.wait_with_output().unwrap();
+        let _ = drain.join();
         (
             out.status.code().unwrap_or(-1),
             String::from_utf8_lossy(&out.stderr).into_owned(),
         )
     };
-    let run = [
-        "simulate",
-        "--modes",
-        "2",
-        "--zeta1",
-        "0.01",
-        "--omega",
-        "1",
-        "--periods",
-        "10",
-        "--record",
-        "2",
-        "--dense",
-        "dense.csv",
-        "--final-state",
-        "state.fifo",
-    ];
-    // the dense output is written, then the final state waits on the FIFO's reader
-    let (code, err) = interrupt_when(&run, &|| d.join("dense.csv").exists());
+    let run = |periods: &'static str, state: &'static str| {
+        vec![
+            "simulate",
+            "--modes",
+            "2",
+            "--zeta1",
+            "0.01",
+            "--omega",
+            "1",
+            "--periods",
+            periods,
+            "--record",
+            periods,
+            "--dense",
+            "dense.csv",
+            "--final-state",
+            state,
+            "--json",
+        ]
+    };
+    // --dense and --final-state are one set: while the final state waits on the FIFO's
+    // reader, the dense file is not yet in place, and an interruption writes neither
+    let temporary = || {
+        std::fs::read_dir(&d)
+            .unwrap()
+            .flatten()
+            .any(|e| e.file_name().to_string_lossy().starts_with(".dense.csv."))
+    };
+    let (code, err) = interrupt_when(&run("10", "state.fifo"), &temporary, true);
+    assert_eq!(code, 130, "{err}");
+    assert!(err.contains("no output was written"), "{err}");
+    assert_eq!(listing(&d), ["state.fifo"], "{err}");
+    // both written, then interrupted while the report waits on a full standard output:
+    // the message names both as complete
+    let (code, err) = interrupt_when(
+        &run("2000", "state.json"),
+        &|| d.join("state.json").exists(),
+        false,
+    );
     assert_eq!(code, 130, "{err}");
     assert!(
-        err.contains("interrupted (SIGINT) after writing, complete:") && err.contains("dense.csv"),
+        err.contains("interrupted (SIGINT) after writing, complete:")
+            && err.contains("dense.csv")
+            && err.contains("state.json"),
         "{err}"
     );
     let rows = std::fs::read_to_string(d.join("dense.csv"))
@@ -346,7 +382,7 @@ fn item_2_an_interruption_names_the_outputs_written_whole() {
         "--dense",
         "never.csv",
     ];
-    let (code, err) = interrupt_when(&long, &|| true);
+    let (code, err) = interrupt_when(&long, &|| true, true);
     assert_eq!(code, 130, "{err}");
     assert!(err.contains("no output was written"), "{err}");
     assert!(!d.join("never.csv").exists());
@@ -474,4 +510,53 @@ fn item_2_a_signal_just_before_the_set_is_written_leaves_nothing() {
             );
         }
     }
+}
+
+#[test]
+fn dense_and_final_state_are_written_as_one_set() {
+    let d = scratch("r4-pair");
+    std::fs::write(d.join("p.csv"), "old").unwrap();
+    std::fs::write(d.join("s.json"), "old").unwrap();
+    let run = |dense: &str, state: &str| {
+        cantilever_in(
+            &d,
+            &[
+                "simulate",
+                "--modes",
+                "2",
+                "--zeta1",
+                "0.01",
+                "--omega",
+                "2",
+                "--periods",
+                "1",
+                "--record",
+                "1",
+                "--dense",
+                dense,
+                "--final-state",
+                state,
+            ],
+        )
+    };
+    // the final state cannot be written (a full disk): the dense file keeps its old text
+    let (code, _, err) = run("p.csv", "/dev/full");
+    assert_ne!(code, 0, "{err}");
+    assert!(err.contains("/dev/full"), "{err}");
+    assert_eq!(std::fs::read_to_string(d.join("p.csv")).unwrap(), "old");
+    // and the other way round
+    let (code, _, err) = run("/dev/full", "s.json");
+    assert_ne!(code, 0, "{err}");
+    assert_eq!(std::fs::read_to_string(d.join("s.json")).unwrap(), "old");
+    assert_eq!(listing(&d), ["p.csv", "s.json"], "temporaries left");
+    // both writable: both new
+    let (code, _, err) = run("p.csv", "s.json");
+    assert_eq!(code, 0, "{err}");
+    assert!(std::fs::read_to_string(d.join("p.csv"))
+        .unwrap()
+        .starts_with("t,in_contact"));
+    assert!(std::fs::read_to_string(d.join("s.json"))
+        .unwrap()
+        .contains("\"state\""));
+    assert_eq!(listing(&d), ["p.csv", "s.json"]);
 }

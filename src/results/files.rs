@@ -385,6 +385,18 @@ pub fn remove_dead_temporaries(dir: &Path, prefix: &str, suffix: &str) {
 /// # Errors
 /// [`Error::Io`] when the temporary cannot be written or renamed.
 pub(crate) fn replace_file(p: &Path, text: &str) -> Result<(), Error> {
+    let tmp = prepare(p, text)?;
+    let renamed = std::fs::rename(&tmp, p).map_err(io(p));
+    if renamed.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    unregister(&tmp);
+    renamed
+}
+
+/// Writes `text` to a registered temporary beside `p`, on the disk and with `p`'s metadata,
+/// ready to be renamed over `p`; nothing is left behind when it fails.
+fn prepare(p: &Path, text: &str) -> Result<PathBuf, Error> {
     let name = p
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
@@ -406,77 +418,76 @@ pub(crate) fn replace_file(p: &Path, text: &str) -> Result<(), Error> {
             f.sync_all()
         })
         .map_err(io(&tmp))
-        .and_then(|()| keep_metadata(p, &tmp))
-        .and_then(|()| std::fs::rename(&tmp, p).map_err(io(p)));
-    if written.is_err() {
-        let _ = std::fs::remove_file(&tmp);
+        .and_then(|()| keep_metadata(p, &tmp));
+    match written {
+        Ok(()) => Ok(tmp),
+        Err(e) => {
+            let _ = std::fs::remove_file(&tmp);
+            unregister(&tmp);
+            Err(e)
+        }
     }
-    unregister(&tmp);
-    written
 }
 
-/// An exclusive lock on an empty file beside the output, held while its set is written and
-/// removed on release, so nothing is left behind. Removing a lock file is only safe if a
-/// writer that was waiting on the removed file notices: after locking, a writer checks that
-/// the path still names the file it locked, and otherwise locks the path's new file.
-pub(crate) struct OutputLock {
-    file: std::fs::File,
-    path: PathBuf,
-}
-
-impl OutputLock {
-    /// Attempts before giving up: each failed attempt means another writer released the
-    /// lock in between, so even a busy folder needs a handful.
-    const ATTEMPTS: usize = 1000;
-
-    pub(crate) fn acquire(path: &Path) -> Result<OutputLock, Error> {
-        use std::os::unix::fs::MetadataExt;
-        for _ in 0..Self::ATTEMPTS {
-            // a link, FIFO or device here is not ours to lock (opening a FIFO would block)
-            if let Ok(m) = std::fs::symlink_metadata(path) {
-                if !m.file_type().is_file() {
-                    return Err(Error::Io {
-                        path: path.display().to_string(),
-                        source: std::io::Error::other(
-                            "the output's lock is not a regular file; remove it",
-                        ),
-                    });
+/// Writes several files as one set (a run's `--dense` and `--final-state`): every file is
+/// written in full to a temporary before any is renamed into place, and the renames happen
+/// together with signals held off. A failure while writing (a full disk, a closed FIFO, a
+/// file-size limit) or SIGINT/SIGTERM before the renames leaves every old file as it was;
+/// only a SIGKILL or a power loss in the microseconds between two renames can leave one
+/// new file beside an old one. Files written through (a FIFO, a device, a standard stream)
+/// are written after the temporaries and before the renames.
+///
+/// # Errors
+/// [`Error::Io`] as [`write_atomically`], for the first file that fails; the others are
+/// then left as they were.
+pub fn write_together(files: &[(&Path, &str)]) -> Result<(), Error> {
+    let targets: Vec<Target> = files.iter().map(|(p, _)| target(p)).collect();
+    for ((path, _), t) in files.iter().zip(&targets) {
+        if let Target::Refuse(why) = t {
+            return Err(Error::Io {
+                path: path.display().to_string(),
+                source: std::io::Error::other(format!("cannot write a file here: it is {why}")),
+            });
+        }
+    }
+    let mut prepared: Vec<(PathBuf, PathBuf, &Path)> = Vec::new();
+    let discard = |prepared: &[(PathBuf, PathBuf, &Path)]| {
+        for (tmp, _, _) in prepared {
+            let _ = std::fs::remove_file(tmp);
+            unregister(tmp);
+        }
+    };
+    for ((path, text), t) in files.iter().zip(&targets) {
+        if let Target::Replace(p) = t {
+            // a signal's clean-up waits for (and then removes) the temporary being written
+            let _writing = writing();
+            match prepare(p, text) {
+                Ok(tmp) => prepared.push((tmp, p.clone(), path)),
+                Err(e) => {
+                    discard(&prepared);
+                    return Err(e);
                 }
             }
-            let file = std::fs::OpenOptions::new()
-                .create(true)
-                .truncate(false)
-                .write(true)
-                .open(path)
-                .map_err(io(path))?;
-            file.lock().map_err(io(path))?;
-            let held = file.metadata().map_err(io(path))?;
-            let same = std::fs::symlink_metadata(path)
-                .is_ok_and(|now| now.dev() == held.dev() && now.ino() == held.ino());
-            if same {
-                // removed by the signal clean-up too: this process holds it
-                register(path);
-                return Ok(OutputLock {
-                    file,
-                    path: path.to_path_buf(),
-                });
+        }
+    }
+    for ((path, text), t) in files.iter().zip(&targets) {
+        if matches!(t, Target::Through(_) | Target::Descriptor(_)) {
+            if let Err(e) = write_atomically(path, text) {
+                discard(&prepared);
+                return Err(e);
             }
         }
-        Err(Error::Io {
-            path: path.display().to_string(),
-            source: std::io::Error::other("could not lock the output: too many other writers"),
-        })
     }
-}
-
-impl Drop for OutputLock {
-    fn drop(&mut self) {
-        // removed before it is unlocked: a waiter then finds the path gone or new and retries
-        let _writing = writing();
-        let _ = std::fs::remove_file(&self.path);
-        unregister(&self.path);
-        let _ = self.file.unlock();
+    let _writing = writing();
+    for (i, (tmp, p, path)) in prepared.iter().enumerate() {
+        if let Err(e) = std::fs::rename(tmp, p) {
+            discard(&prepared[i..]);
+            return Err(io(p)(e));
+        }
+        unregister(tmp);
+        completed(path);
     }
+    Ok(())
 }
 
 /// Scratch folders of this band's unit tests.

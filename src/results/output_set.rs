@@ -163,7 +163,7 @@ pub fn check_set(flag: &str, dir: &Path, names: &[&str]) -> Result<(), Parameter
     // a transaction a killed run left here is finished or rolled back first: its half-
     // swapped files are the program's own, not obstacles
     if dir.join(JOURNAL).is_file() {
-        if let Ok(_lock) = files::OutputLock::acquire(&dir.join(LOCK)) {
+        if let Ok(_lock) = crate::results::output_lock::OutputLock::acquire(&dir.join(LOCK)) {
             recover(dir);
             remove_orphans(dir);
         }
@@ -233,7 +233,7 @@ fn write_set_in(dir: &Path, set: &[(String, String)]) -> Result<(), Error> {
             source: std::io::Error::other("not a directory"),
         });
     }
-    let _lock = files::OutputLock::acquire(&dir.join(LOCK))?;
+    let _lock = crate::results::output_lock::OutputLock::acquire(&dir.join(LOCK))?;
     recover(&dir);
     remove_orphans(&dir);
     let names: Vec<&str> = set.iter().map(|(n, _)| n.as_str()).collect();

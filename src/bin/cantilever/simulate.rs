@@ -11,7 +11,7 @@ use impacting_cantilever::engine::built::BuiltModel;
 use impacting_cantilever::error::{Error, ParameterError};
 use impacting_cantilever::model::galerkin::first_frequency;
 use impacting_cantilever::model::spec::{ModelSpec, Named, Stop, Structure, Units};
-use impacting_cantilever::results::scene::write_atomically;
+use impacting_cantilever::results::files::write_together;
 use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
 
@@ -348,8 +348,10 @@ pub fn to_text(r: &Report) -> String {
     t
 }
 
-/// Writes --dense and --final-state, each atomically.
+/// Writes --dense and --final-state as one set: both new, or (after a failure or a signal)
+/// both as they were.
 fn write_files(r: &Report) -> Result<(), Error> {
+    let mut outputs: Vec<(&Path, String)> = Vec::new();
     if let (Some(path), Some(dense)) = (&r.args.dense, &r.sim.dense) {
         let n = r.model.modes();
         let mut csv = String::from("t,in_contact,tip,tip_velocity");
@@ -373,7 +375,7 @@ fn write_files(r: &Report) -> Result<(), Error> {
             }
             csv.push('\n');
         }
-        write_atomically(path, &csv)?;
+        outputs.push((path, csv));
     }
     if let Some(path) = &r.args.final_state {
         let c = r.sim.final_clock;
@@ -386,10 +388,8 @@ fn write_files(r: &Report) -> Result<(), Error> {
             "state": r.sim.final_state.iter().collect::<Vec<_>>(),
             "inputs": inputs(r),
         });
-        write_atomically(
-            path,
-            &serde_json::to_string_pretty(&doc).unwrap_or_default(),
-        )?;
+        outputs.push((path, serde_json::to_string_pretty(&doc).unwrap_or_default()));
     }
-    Ok(())
+    let outputs: Vec<(&Path, &str)> = outputs.iter().map(|(p, t)| (*p, t.as_str())).collect();
+    write_together(&outputs)
 }
