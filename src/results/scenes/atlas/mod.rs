@@ -80,7 +80,7 @@ fn check_disagreements(d: &AtlasData) -> String {
                 .map(|x| format!(", impact velocities {:.1}% apart", 100.0 * x))
                 .unwrap_or_default();
             v.push(format!(
-                "N = {} {}, N = {} {}{change} at k = {}k₁, ω = {:.2}",
+                "N = {} {}, N = {} {}{change} at k/k₁ = {}, ω/(β₁⁻)² = {:.2}",
                 check.modes,
                 label(check.from_rest),
                 r.modes,
@@ -234,7 +234,7 @@ impl Scene for Atlas {
             k.text(
                 "most taps per forcing period from rest",
                 format!(
-                    "{taps} at k = {}k₁, ω = {:.3}(β₁⁻)²",
+                    "{taps} at k/k₁ = {}, ω/(β₁⁻)² = {:.3}",
                     crate::base::report::pretty(at.0, 3),
                     d.omega_over_w1[at.1]
                 ),
