@@ -6,6 +6,7 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use impacting_cantilever::analysis::shooting;
+use impacting_cantilever::base::progress::Silent;
 use impacting_cantilever::engine::sim::Simulator;
 use impacting_cantilever::model::problems;
 use impacting_cantilever::results::scenes::fig5::{self, branches, Fig5Params};
@@ -51,7 +52,7 @@ fn atlas(c: &mut Criterion) {
     let mut g = c.benchmark_group("atlas");
     g.sample_size(10);
     g.bench_function("128 x 128 atlas, N matched to k (all threads)", |b| {
-        b.iter(|| impacting_cantilever::analysis::atlas::compute(black_box(&p), &|| {}).unwrap())
+        b.iter(|| impacting_cantilever::analysis::atlas::compute(black_box(&p), &Silent).unwrap())
     });
     g.finish();
 }

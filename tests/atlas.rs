@@ -6,6 +6,7 @@
 
 use impacting_cantilever::analysis::atlas::{self, cell::CellSearch, AtlasParams, Partial, Shard};
 use impacting_cantilever::analysis::orbit::{settle, OrbitKind};
+use impacting_cantilever::base::progress::Silent;
 use impacting_cantilever::engine::sim::Simulator;
 
 /// A small atlas: 5 k × 4 ω over the book's ranges.
@@ -33,18 +34,18 @@ fn sharded_atlas_is_identical_to_unsharded_for_any_thread_count() {
         omega_points: 3,
         ..small()
     };
-    let whole = atlas::compute(&p, &|| {}).unwrap();
+    let whole = atlas::compute(&p, &Silent).unwrap();
     // one thread: the rows run in order
     let single = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
         .unwrap()
-        .install(|| atlas::compute(&p, &|| {}).unwrap());
+        .install(|| atlas::compute(&p, &Silent).unwrap());
     assert_eq!(whole, single);
     for count in [2, 3, 4] {
         let mut parts: Vec<Partial> = (0..count)
             .map(|index| {
-                through_json(atlas::compute_shard(&p, Shard { index, count }, &|| {}).unwrap())
+                through_json(atlas::compute_shard(&p, Shard { index, count }, &Silent).unwrap())
             })
             .collect();
         parts.reverse(); // any order
@@ -66,7 +67,7 @@ fn merge_refuses_missing_repeated_and_mixed_shards() {
         omega_points: 1,
         ..small()
     };
-    let part = |index, count| atlas::compute_shard(&p, Shard { index, count }, &|| {}).unwrap();
+    let part = |index, count| atlas::compute_shard(&p, Shard { index, count }, &Silent).unwrap();
     let (a, b) = (part(0, 2), part(1, 2));
     let message = |parts: Vec<Partial>| atlas::merge(parts).unwrap_err().to_string();
     assert!(message(vec![a.clone()]).contains("row 1 missing"));
@@ -111,7 +112,7 @@ fn brute_force(sim: &Simulator, x0: &nalgebra::DVector<f64>) -> OrbitKind {
 )]
 fn orbits_from_rest_and_coexistence_agree_with_brute_force_transients() {
     let p = AtlasParams::test();
-    let d = atlas::compute(&p, &|| {}).unwrap();
+    let d = atlas::compute(&p, &Silent).unwrap();
     let (mut confirmed, mut unsettled, mut coexisting) = (0, 0, 0);
     for r in &d.rows {
         for (j, c) in r.cells.iter().enumerate() {
@@ -231,4 +232,40 @@ fn continued_orbits_are_where_a_slow_frequency_sweep_settles() {
         checked >= omegas.len() - 1,
         "{checked} continued orbits checked"
     );
+}
+
+/// A cancelled caller stops a shard before its next cell (the Python package's Ctrl-C and
+/// raising callback rely on it).
+#[test]
+fn a_cancelled_shard_stops_with_interrupted() {
+    use impacting_cantilever::base::progress::{Progress, Task};
+    use impacting_cantilever::error::Error;
+    use std::sync::atomic::{AtomicU64, Ordering};
+    struct StopAfter(AtomicU64, u64);
+    impl Task for StopAfter {
+        fn advance(&self, units: u64) {
+            self.0.fetch_add(units, Ordering::Relaxed);
+        }
+    }
+    impl Progress for StopAfter {
+        fn task(&self, _: &str, _: u64) -> Box<dyn Task + '_> {
+            Box::new(self)
+        }
+        fn cancelled(&self) -> bool {
+            self.0.load(Ordering::Relaxed) >= self.1
+        }
+    }
+    impl Task for &StopAfter {
+        fn advance(&self, units: u64) {
+            (*self).advance(units)
+        }
+    }
+    let p = AtlasParams::test();
+    let stop = StopAfter(AtomicU64::new(0), 2);
+    let r = atlas::compute_shard(&p, Shard { index: 0, count: 1 }, &stop);
+    assert!(matches!(r, Err(Error::Interrupted)), "{:?}", r.err());
+    // each row stops within one cell of the cancellation (rows run in parallel)
+    let done = stop.0.load(Ordering::Relaxed);
+    let rows = rayon::current_num_threads() as u64;
+    assert!(done < 2 + rows, "{done} cells after cancelling at 2");
 }

@@ -67,10 +67,10 @@ pub fn find_orbit<'py>(
         restitution,
     )?;
     let (x0, from) = model.start(start, seed)?;
-    let reporter = Reporter::new(None);
-    // the transient reports to the reporter, which polls Ctrl-C and stops the run
-    let result = py.detach(|| library::find_orbit_reporting(&model.built, &x0, &o, &reporter));
-    let f: FoundOrbit = reporter.finish(result)?;
+    // the transient reports to the reporter and stops on Ctrl-C
+    let f: FoundOrbit = Reporter::new(None).run(py, |r| {
+        library::find_orbit_reporting(&model.built, &x0, &o, r)
+    })?;
     let d = PyDict::new(py);
     d.set_item("state", state(py, &f.state))?;
     d.set_item("period_m", f.period_m)?;
@@ -129,13 +129,11 @@ pub fn continue_branch<'py>(
         doubling_up_to: u64::try_from(doubling_up_to)
             .map_err(|_| bad("doubling_up_to", doubling_up_to, "1 to 64"))?,
     };
-    let reporter = Reporter::new(progress);
     let spec = model.built.spec();
-    let result = py.detach(|| {
-        let c = continue_from(spec, &start, &orbit, &o, &reporter)?;
+    let doc = Reporter::new(progress).run(py, |r| {
+        let c = continue_from(spec, &start, &orbit, &o, r)?;
         serde_json::to_value(&c).map_err(|e| Error::Unsupported(e.to_string()))
-    });
-    let doc = reporter.finish(result)?;
+    })?;
     json_to_py(py, &doc)
 }
 
@@ -153,12 +151,11 @@ pub fn energetic_restitution<'py>(
     let transient = TRANSIENT.check(transient.into()).map_err(py_error)?;
     let window = WINDOW.check(window.into()).map_err(py_error)?;
     let (x0, _) = model.start(start, seed)?;
-    let reporter = Reporter::new(None);
-    let result = py.detach(|| {
-        let o = energetic::energetic_restitution(&model.built, &x0, transient, window)?;
+    let doc = Reporter::new(None).run(py, |r| {
+        let o =
+            energetic::energetic_restitution_reporting(&model.built, &x0, transient, window, r)?;
         serde_json::to_value(&o).map_err(|e| Error::Unsupported(e.to_string()))
-    });
-    let doc = reporter.finish(result)?;
+    })?;
     json_to_py(py, &doc)
 }
 
@@ -171,12 +168,10 @@ pub fn modes_needed(
     tolerance: f64,
     zeta1: f64,
 ) -> Res<Bound<'_, PyAny>> {
-    let reporter = Reporter::new(None);
-    let result = py.detach(|| {
+    let doc = Reporter::new(None).run(py, |_| {
         let m = convergence::modes_needed(stop_stiffness, tolerance, zeta1)?;
         serde_json::to_value(&m).map_err(|e| Error::Unsupported(e.to_string()))
-    });
-    let doc = reporter.finish(result)?;
+    })?;
     json_to_py(py, &doc)
 }
 

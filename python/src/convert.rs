@@ -76,6 +76,9 @@ pub struct Reporter {
     last: Mutex<Option<Instant>>,
 }
 
+/// How often the calling thread checks for Ctrl-C while the work runs.
+const SIGNAL_POLL: Duration = Duration::from_millis(20);
+
 /// The shortest interval between two reports of a task.
 const THROTTLE: Duration = Duration::from_millis(100);
 
@@ -121,6 +124,54 @@ impl Reporter {
                 None => Ok(()),
             };
             if let Err(e) = result.and_then(|()| py.check_signals()) {
+                self.stopped.store(true, Ordering::Relaxed);
+                let mut slot = self.error.lock().unwrap_or_else(|p| p.into_inner());
+                slot.get_or_insert(e);
+            }
+        });
+    }
+
+    /// Runs `work` (given this reporter as its progress) on a worker thread with the
+    /// interpreter released, while the calling thread checks for Ctrl-C every 20 ms: Python
+    /// runs signal handlers only in its main thread, so a check from the work's own threads
+    /// would never see one. A KeyboardInterrupt or a raising callback cancels the work, which
+    /// stops at its next check of [`Progress::cancelled`] (every period of a run, every cell
+    /// of an atlas), and the exception is raised; the partial work is dropped.
+    pub fn run<T: Send>(
+        self,
+        py: Python<'_>,
+        work: impl FnOnce(&Reporter) -> Result<T, Error> + Send,
+    ) -> Res<T> {
+        let outcome = py.detach(|| {
+            std::thread::scope(|s| {
+                let (done, finished) = std::sync::mpsc::channel();
+                let this = &self;
+                let worker = s.spawn(move || {
+                    let r = work(this);
+                    let _ = done.send(());
+                    r
+                });
+                while let Err(std::sync::mpsc::RecvTimeoutError::Timeout) =
+                    finished.recv_timeout(SIGNAL_POLL)
+                {
+                    self.poll_signals();
+                }
+                worker.join()
+            })
+        });
+        match outcome {
+            Ok(result) => self.finish(result),
+            Err(panic) => std::panic::resume_unwind(panic),
+        }
+    }
+
+    /// Checks for a pending signal (Ctrl-C) from the calling thread; one stops the work.
+    fn poll_signals(&self) {
+        if self.stopped() {
+            return;
+        }
+        Python::attach(|py| {
+            if let Err(e) = py.check_signals() {
                 self.stopped.store(true, Ordering::Relaxed);
                 let mut slot = self.error.lock().unwrap_or_else(|p| p.into_inner());
                 slot.get_or_insert(e);

@@ -138,15 +138,13 @@ pub fn scene_run(
         use impacting_cantilever::results::output_set;
         output_set::check_set("out", dir, &output_set::SCENE_FILES).map_err(py_error)?;
     }
-    let reporter = Reporter::new(progress);
-    let result = py.detach(|| {
-        let output = spec.run(r, &reporter)?;
+    let out = Reporter::new(progress).run(py, |reporter| {
+        let output = spec.run(r, reporter)?;
         if let Some(dir) = &out {
             scene::write(spec, &output, dir)?;
         }
         Ok(output)
-    });
-    let out = reporter.finish(result)?;
+    })?;
     Ok(SceneRun { spec, out })
 }
 
@@ -209,18 +207,10 @@ pub fn atlas_shard(
         e.name = "shard index/count".into();
         py_error(e)
     })?;
-    let reporter = Reporter::new(progress);
-    let cells = (shard.rows(p.k_points).count() * p.omega_points) as u64;
-    let done = std::sync::atomic::AtomicU64::new(0);
-    let result = py.detach(|| {
-        let tick = || {
-            let d = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-            reporter.report("atlas cells", d, cells);
-        };
-        let part = atlas::compute_shard(&p, shard, &tick)?;
+    Reporter::new(progress).run(py, |reporter| {
+        let part = atlas::compute_shard(&p, shard, reporter)?;
         serde_json::to_string(&part).map_err(|e| Error::Unsupported(format!("atlas shard: {e}")))
-    });
-    reporter.finish(result)
+    })
 }
 
 /// Merges shards (JSON texts) into the atlas scene's output, as `cantilever atlas-merge`

@@ -115,9 +115,7 @@ pub fn simulate<'py>(
     .map_err(py_error)?;
     o.check(model.n()).map_err(py_error)?;
     let (x0, from) = model.start(start, seed)?;
-    let reporter = Reporter::new(progress);
-    let result = py.detach(|| run(&model.built, &x0, &o, &reporter));
-    let s = reporter.finish(result)?;
+    let s = Reporter::new(progress).run(py, |r| run(&model.built, &x0, &o, r))?;
     let n = model.n();
     let d = PyDict::new(py);
     d.set_item("events", events_dict(py, &s.events, n)?)?;

@@ -18,7 +18,9 @@
 //! the contact hands to the higher modes.
 
 use crate::analysis::orbit::{self, OrbitKind};
+use crate::base::progress::{Progress, Silent};
 use crate::engine::built::{BuiltModel, Variant};
+use crate::engine::map::PeriodMap;
 use crate::engine::sim::energy::{segment_energy, EnergyTables};
 use crate::engine::sim::{Clock, EventView, Observer, SegmentView, Simulator};
 use crate::error::{Error, ParameterError};
@@ -240,12 +242,36 @@ pub fn energetic_restitution(
     transient: u64,
     window: u64,
 ) -> Result<OrbitCoefficient, Error> {
+    energetic_restitution_reporting(model, x0, transient, window, &Silent)
+}
+
+/// [`energetic_restitution`], reporting the transient's periods to `progress` (a task
+/// "r_E: transient periods") and stopping with [`Error::Interrupted`] when it is cancelled.
+/// The result is [`energetic_restitution`]'s, bit for bit (the observer changes nothing of
+/// the run).
+///
+/// # Errors
+/// As [`energetic_restitution`]; [`Error::Interrupted`].
+pub fn energetic_restitution_reporting(
+    model: &BuiltModel,
+    x0: &DVector<f64>,
+    transient: u64,
+    window: u64,
+    progress: &dyn Progress,
+) -> Result<OrbitCoefficient, Error> {
     orbit::TRANSIENT.check(transient as i128)?;
     orbit::WINDOW.check(window as i128)?;
-    match model.variant() {
-        Variant::Compliant(sim) => orbit_coefficient(sim, x0, transient, window),
-        Variant::Rigid(_) => Err(Error::Unsupported(NO_CONTACT_FORCE.into())),
+    let sim = match model.variant() {
+        Variant::Compliant(sim) => sim,
+        Variant::Rigid(_) => return Err(Error::Unsupported(NO_CONTACT_FORCE.into())),
+    };
+    let task = progress.task("r_E: transient periods", transient);
+    let x = sim.advance_reporting(x0, 0, transient, task.as_ref(), progress)?;
+    drop(task);
+    if progress.cancelled() {
+        return Err(Error::Interrupted);
     }
+    coefficient_after(sim, &x, transient, window)
 }
 
 /// Runs `transient` periods from x0, labels the orbit over a `window` of periods, and if it
@@ -259,7 +285,18 @@ pub fn orbit_coefficient(
     transient: u64,
     window: u64,
 ) -> Result<OrbitCoefficient, Error> {
-    let settled = orbit::settle(sim, x0, transient, window, 0)?;
+    let x = sim.run(x0, transient, &mut ())?.state;
+    coefficient_after(sim, &x, transient, window)
+}
+
+/// [`orbit_coefficient`] from x, the state after the transient's `transient` periods.
+fn coefficient_after(
+    sim: &Simulator,
+    x: &DVector<f64>,
+    transient: u64,
+    window: u64,
+) -> Result<OrbitCoefficient, Error> {
+    let settled = orbit::settle_after(sim, x, transient, window, 0)?;
     let cycle = (transient + window) as i64;
     let mut result = OrbitCoefficient {
         kind: settled.kind,

@@ -273,6 +273,20 @@ pub fn settle(
     dense_per_period: usize,
 ) -> Result<Orbit, Error> {
     let x = sim.run(x0, transient, &mut ())?.state;
+    settle_after(sim, &x, transient, window, dense_per_period)
+}
+
+/// [`settle`] from x, the state after the transient's `transient` periods.
+///
+/// # Errors
+/// As [`settle`].
+pub fn settle_after(
+    sim: &Simulator,
+    x: &DVector<f64>,
+    transient: u64,
+    window: u64,
+    dense_per_period: usize,
+) -> Result<Orbit, Error> {
     let start = sim.clock_at_cycle(transient as i64);
     let (mut events, mut strobe, mut dense) = (
         Events::default(),
@@ -281,7 +295,7 @@ pub fn settle(
     );
     let state = sim
         .run_from(
-            &x,
+            x,
             start,
             window,
             &mut (&mut events, &mut strobe, &mut dense),

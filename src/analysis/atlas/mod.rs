@@ -31,6 +31,7 @@ mod shard;
 
 pub use shard::{build, compute, compute_shard, merge, Partial, Shard, PARTIAL_FORMAT};
 
+use crate::base::progress::{Progress, Task};
 use crate::engine::sim::Simulator;
 use crate::error::{self, Error, ParameterError};
 use crate::model::problems::Forced;
@@ -289,6 +290,16 @@ impl AtlasParams {
     /// [`crate::analysis::convergence::matched_modes`] at a computed row: [`Error::Unsupported`]
     /// when N* is unresolved or above the model's largest N, or a parameter out of range.
     pub fn modes_by_row(&self) -> Result<Vec<usize>, Error> {
+        self.modes_by_row_reporting(&crate::base::progress::Silent)
+    }
+
+    /// [`Self::modes_by_row`], reporting the computed rows to `progress` (a task "atlas:
+    /// modes by stiffness matching") and stopping with [`Error::Interrupted`] before the
+    /// next row when it is cancelled.
+    ///
+    /// # Errors
+    /// As [`Self::modes_by_row`]; [`Error::Interrupted`].
+    pub fn modes_by_row_reporting(&self, progress: &dyn Progress) -> Result<Vec<usize>, Error> {
         let (tolerance, stride, minimum) = match self.modes {
             ModesRule::Fixed(n) => return Ok(vec![n; self.k_points]),
             ModesRule::Matched {
@@ -301,17 +312,24 @@ impl AtlasParams {
         if computed.last() != Some(&(self.k_points - 1)) {
             computed.push(self.k_points - 1);
         }
+        let task = progress.task("atlas: modes by stiffness matching", computed.len() as u64);
         let needed: Vec<usize> = computed
             .par_iter()
             .map(|&i| {
-                crate::analysis::convergence::matched_modes(
+                if progress.cancelled() {
+                    return Err(Error::Interrupted);
+                }
+                let n = crate::analysis::convergence::matched_modes(
                     self.k_over_k1(i),
                     tolerance,
                     self.zeta1,
                     minimum,
-                )
+                )?;
+                task.advance(1);
+                Ok(n)
             })
             .collect::<Result<_, Error>>()?;
+        drop(task);
         Ok((0..self.k_points)
             .map(|i| {
                 let at = computed
@@ -472,22 +490,28 @@ pub struct AtlasData {
     pub rows: Vec<Row>,
 }
 
-/// Computes row i with `modes` modes; `progress` is called once per finished cell.
+/// Computes row i with `modes` modes; each finished cell advances `task` by one, and the row
+/// stops before its next cell when `progress` is cancelled.
 ///
 /// # Errors
 /// [`Error::Parameter`] for a cell's model out of range; [`Error::Flow`] when its flow cannot
-/// be built; the errors of [`CellSearch::run`] and of the check's searches.
+/// be built; the errors of [`CellSearch::run`] and of the check's searches;
+/// [`Error::Interrupted`] when cancelled.
 pub fn row(
     p: &AtlasParams,
     i: usize,
     modes: usize,
-    progress: &(dyn Fn() + Sync),
+    task: &dyn Task,
+    progress: &dyn Progress,
 ) -> Result<Row, Error> {
     let k = p.k_over_k1(i);
     let checked_row = i.is_multiple_of(p.check_stride);
     let mut cells = Vec::with_capacity(p.omega_points);
     let mut previous: Vec<Found> = Vec::new();
     for j in 0..p.omega_points {
+        if progress.cancelled() {
+            return Err(Error::Interrupted);
+        }
         let w = p.omega_over_w1(j);
         let sim = Simulator::new(p.model(modes, k, w)?.model()?)?;
         let search = CellSearch {
@@ -523,7 +547,7 @@ pub fn row(
         }
         cells.push(cell);
         previous = found;
-        progress();
+        task.advance(1);
     }
     Ok(Row {
         index: i,

@@ -240,7 +240,8 @@ impl Partial {
 /// The `format` of a [`Partial`].
 pub const PARTIAL_FORMAT: &str = "impacting-cantilever atlas shard v2";
 
-/// Computes the rows of one shard in parallel (rayon); `progress` is called once per cell.
+/// Computes the rows of one shard in parallel (rayon), reporting its cells to `progress` (a
+/// task "atlas cells") and stopping within a cell of each row when `progress` is cancelled.
 ///
 /// # Errors
 /// [`Error::Parameter`] for invalid parameters; the errors of
@@ -248,14 +249,15 @@ pub const PARTIAL_FORMAT: &str = "impacting-cantilever atlas shard v2";
 pub fn compute_shard(
     p: &AtlasParams,
     shard: Shard,
-    progress: &(dyn Fn() + Sync),
+    progress: &dyn Progress,
 ) -> Result<Partial, Error> {
     p.validate()?;
-    let modes = p.modes_by_row()?;
+    let modes = p.modes_by_row_reporting(progress)?;
     let indices: Vec<usize> = shard.rows(p.k_points).collect();
+    let task = progress.task("atlas cells", (indices.len() * p.omega_points) as u64);
     let rows = indices
         .par_iter()
-        .map(|&i| row(p, i, modes[i], progress))
+        .map(|&i| row(p, i, modes[i], task.as_ref(), progress))
         .collect::<Result<Vec<_>, _>>()?;
     Ok(Partial {
         format: PARTIAL_FORMAT.to_string(),
@@ -281,7 +283,7 @@ pub fn build() -> String {
 ///
 /// # Errors
 /// The errors of [`compute_shard`].
-pub fn compute(p: &AtlasParams, progress: &(dyn Fn() + Sync)) -> Result<AtlasData, Error> {
+pub fn compute(p: &AtlasParams, progress: &dyn Progress) -> Result<AtlasData, Error> {
     merge(vec![compute_shard(p, Shard::WHOLE, progress)?])
 }
 

@@ -5,7 +5,7 @@
 use crate::progress;
 use impacting_cantilever::analysis::atlas::{self, AtlasOverrides, AtlasParams, Shard};
 use impacting_cantilever::error::{Error, ParameterError};
-use impacting_cantilever::results::scene::{self, Progress, Resolution, Scene};
+use impacting_cantilever::results::scene::{self, Resolution, Scene};
 use impacting_cantilever::results::scenes::atlas::{shards, Atlas};
 use std::path::{Path, PathBuf};
 
@@ -75,10 +75,7 @@ pub fn run(a: &AtlasArgs) -> Result<usize, Error> {
     let shard = Shard::parse(&a.shard)?;
     writable_file(&a.out)?;
     let bars = progress::Bars::default();
-    let rows = shard.rows(p.k_points).count();
-    let task = bars.task("atlas cells", (rows * p.omega_points) as u64);
-    let part = atlas::compute_shard(&p, shard, &|| task.advance(1))?;
-    drop(task);
+    let part = atlas::compute_shard(&p, shard, &bars)?;
     let json = serde_json::to_string(&part)
         .map_err(|e| Error::Unsupported(format!("atlas shard: {e}")))?;
     scene::write_atomically(&a.out, &json)?;

@@ -181,8 +181,7 @@ impl Scene for Atlas {
     }
 
     fn compute(p: &AtlasParams, progress: &dyn Progress) -> Result<AtlasData, Error> {
-        let task = progress.task("atlas cells", (p.k_points * p.omega_points) as u64);
-        atlas::compute(p, &|| task.advance(1))
+        atlas::compute(p, progress)
     }
 
     fn key_numbers(d: &AtlasData) -> KeyNumbers {
