@@ -170,7 +170,50 @@ fn rebuilding_one_scene_reuses_only_current_outputs(tmp: &Path) {
     );
     let unknown = build_only(tmp, Resolution::Test, Some(&["fig99".to_string()]), &Silent);
     assert!(unknown.is_err());
+    a_users_files_among_the_pages_are_kept(tmp);
     book_builds_whole_from_a_relative_root(tmp);
+}
+
+/// The pages are replaced as a whole, but a file the program did not write there stays (it
+/// is carried into the new pages), and a page of ours edited since, or pages without the
+/// program's manifest, are refused before the work (a refusal: exit 2 on the command line).
+fn a_users_files_among_the_pages_are_kept(tmp: &Path) {
+    use impacting_cantilever::error::ParameterError;
+    use impacting_cantilever::results::book::build_only;
+    use impacting_cantilever::results::scene::{Resolution, Silent};
+    let build = tmp.join("build");
+    std::fs::write(build.join("mine.txt"), "lab notes").unwrap();
+    std::fs::create_dir_all(build.join("notes")).unwrap();
+    std::fs::write(build.join("notes/a.md"), "more").unwrap();
+    build_only(tmp, Resolution::Test, Some(&[]), &Silent).expect("rebuilds");
+    assert_eq!(
+        std::fs::read_to_string(build.join("mine.txt")).unwrap(),
+        "lab notes"
+    );
+    assert_eq!(
+        std::fs::read_to_string(build.join("notes/a.md")).unwrap(),
+        "more"
+    );
+    assert!(build.join("fig2.html").is_file());
+    // an edited page would be lost: refused, and the pages stay as they are
+    let page = build.join("fig2.html");
+    let edited = std::fs::read_to_string(&page).unwrap() + "<!-- my edit -->";
+    std::fs::write(&page, &edited).unwrap();
+    let refused = build_only(tmp, Resolution::Test, Some(&[]), &Silent).unwrap_err();
+    assert!(
+        refused.chain().any(|c| c.is::<ParameterError>()),
+        "{refused:#}"
+    );
+    assert!(format!("{refused:#}").contains("fig2.html"), "{refused:#}");
+    assert_eq!(std::fs::read_to_string(&page).unwrap(), edited);
+    // pages without the manifest (an earlier version's) cannot be told from a user's
+    std::fs::remove_file(build.join(".cantilever-manifest.json")).unwrap();
+    let refused = build_only(tmp, Resolution::Test, Some(&[]), &Silent).unwrap_err();
+    assert!(
+        refused.chain().any(|c| c.is::<ParameterError>()),
+        "{refused:#}"
+    );
+    assert!(build.join("mine.txt").is_file() && page.is_file());
 }
 
 /// The main job names its root relatively ("book"), and mdBook takes a relative build

@@ -9,7 +9,7 @@ use cli::{cantilever_in, scratch};
 use std::os::unix::fs::{MetadataExt, PermissionsExt};
 use std::path::Path;
 
-fn listing(d: &Path) -> Vec<String> {
+pub(crate) fn listing(d: &Path) -> Vec<String> {
     let mut v: Vec<String> = std::fs::read_dir(d)
         .unwrap()
         .flatten()
@@ -196,7 +196,7 @@ fn item_2_a_size_limit_fails_the_write_and_keeps_the_old_set() {
 
 /// Runs a copy of the binary as user `nobody` in `dir` (None when this test is not run by
 /// root or the system has no `setpriv`: only root can take another user's part).
-fn as_nobody(dir: &Path, args: &[&str]) -> Option<(i32, String)> {
+pub(crate) fn as_nobody(dir: &Path, args: &[&str]) -> Option<(i32, String)> {
     let root = std::fs::metadata(std::env::temp_dir().join("."))
         .ok()
         .and_then(|_| {
@@ -510,53 +510,4 @@ fn item_2_a_signal_just_before_the_set_is_written_leaves_nothing() {
             );
         }
     }
-}
-
-#[test]
-fn dense_and_final_state_are_written_as_one_set() {
-    let d = scratch("r4-pair");
-    std::fs::write(d.join("p.csv"), "old").unwrap();
-    std::fs::write(d.join("s.json"), "old").unwrap();
-    let run = |dense: &str, state: &str| {
-        cantilever_in(
-            &d,
-            &[
-                "simulate",
-                "--modes",
-                "2",
-                "--zeta1",
-                "0.01",
-                "--omega",
-                "2",
-                "--periods",
-                "1",
-                "--record",
-                "1",
-                "--dense",
-                dense,
-                "--final-state",
-                state,
-            ],
-        )
-    };
-    // the final state cannot be written (a full disk): the dense file keeps its old text
-    let (code, _, err) = run("p.csv", "/dev/full");
-    assert_ne!(code, 0, "{err}");
-    assert!(err.contains("/dev/full"), "{err}");
-    assert_eq!(std::fs::read_to_string(d.join("p.csv")).unwrap(), "old");
-    // and the other way round
-    let (code, _, err) = run("/dev/full", "s.json");
-    assert_ne!(code, 0, "{err}");
-    assert_eq!(std::fs::read_to_string(d.join("s.json")).unwrap(), "old");
-    assert_eq!(listing(&d), ["p.csv", "s.json"], "temporaries left");
-    // both writable: both new
-    let (code, _, err) = run("p.csv", "s.json");
-    assert_eq!(code, 0, "{err}");
-    assert!(std::fs::read_to_string(d.join("p.csv"))
-        .unwrap()
-        .starts_with("t,in_contact"));
-    assert!(std::fs::read_to_string(d.join("s.json"))
-        .unwrap()
-        .contains("\"state\""));
-    assert_eq!(listing(&d), ["p.csv", "s.json"]);
 }

@@ -22,6 +22,7 @@ mod convergence;
 mod critical_damping;
 mod diff;
 mod energetic;
+mod files_recheck;
 mod files_round4;
 mod flow;
 mod galerkin;

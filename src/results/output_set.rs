@@ -35,7 +35,7 @@ const MANIFEST_FORMAT: &str = "impacting-cantilever output manifest v1";
 
 /// FNV-1a (64 bits) and the length: a checksum that a file is byte for byte the one
 /// written (not a guard against forgery, which no output needs).
-fn checksum(bytes: &[u8]) -> String {
+pub(crate) fn checksum(bytes: &[u8]) -> String {
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
     for b in bytes {
         h ^= u64::from(*b);
@@ -118,30 +118,11 @@ fn sticky_obstacle(dir: &Path, names: &[&str]) -> Option<String> {
         return None;
     }
     // the caller's user is the owner of a file it creates (no need for a system call)
-    // a probe of a run killed between writing and removing it
-    files::remove_dead_temporaries(dir, ".cantilever-probe.", "");
-    let probe = dir.join(format!(".cantilever-probe.{}", std::process::id()));
-    std::fs::write(&probe, b"").ok()?;
-    let me = std::fs::metadata(&probe).map(|m| m.uid());
-    let _ = std::fs::remove_file(&probe);
-    let me = me.ok()?;
-    names.iter().chain(&[MANIFEST]).find_map(|name| {
-        let path = dir.join(name);
-        let file = std::fs::symlink_metadata(&path).ok()?;
-        (!may_replace_in_sticky(me, folder.uid(), file.uid())).then(|| {
-            format!(
-                "{} belongs to another user, and the folder has the sticky bit: only its \
-                 owner, the folder's owner or root may replace it",
-                path.display()
-            )
-        })
-    })
-}
-
-/// The sticky bit's rule: user `me` may rename or remove a file owned by `file_owner` in a
-/// sticky folder owned by `folder_owner` (root may always; CAP_FOWNER is not consulted).
-fn may_replace_in_sticky(me: u32, folder_owner: u32, file_owner: u32) -> bool {
-    me == 0 || me == folder_owner || me == file_owner
+    let me = files::probe(dir).ok()?;
+    names
+        .iter()
+        .chain(&[MANIFEST])
+        .find_map(|name| files::sticky_refusal(dir, &dir.join(name), me))
 }
 
 /// The files every scene's set has (a scene may add tables).
@@ -548,11 +529,11 @@ mod tests {
     #[test]
     fn the_sticky_bit_lets_only_owners_and_root_replace() {
         // (me, folder owner, file owner)
-        assert!(may_replace_in_sticky(0, 1000, 1001));
-        assert!(may_replace_in_sticky(1000, 1000, 0));
-        assert!(may_replace_in_sticky(1000, 0, 1000));
-        assert!(!may_replace_in_sticky(1000, 0, 1001));
-        assert!(!may_replace_in_sticky(65534, 0, 0));
+        assert!(files::may_replace_in_sticky(0, 1000, 1001));
+        assert!(files::may_replace_in_sticky(1000, 1000, 0));
+        assert!(files::may_replace_in_sticky(1000, 0, 1000));
+        assert!(!files::may_replace_in_sticky(1000, 0, 1001));
+        assert!(!files::may_replace_in_sticky(65534, 0, 0));
     }
 
     #[test]

@@ -277,6 +277,13 @@ impl AtlasParams {
         // not an atlas of this model); the model checks k and ω at the grid's corners
         ranges::ZETA1.check(self.zeta1)?;
         ranges::GAP.check(self.gap)?;
+        // each end of the ranges named as given (a model of ω = 1e308 would report ω as inf)
+        for omega in [self.omega_range.0, self.omega_range.1] {
+            ranges::OMEGA.check(omega)?;
+        }
+        for k in [self.k_over_k1_range.0, self.k_over_k1_range.1] {
+            ranges::STOP_STIFFNESS.check(k)?;
+        }
         self.model(1, self.k_over_k1_range.1, self.omega_range.1)?;
         self.model(1, self.k_over_k1_range.0, self.omega_range.0)?;
         Ok(())

@@ -25,7 +25,17 @@ pub(super) fn book_command(
         only,
         &progress::Bars::default(),
     )
-    .map_err(|e| Failure::Other(format!("{e:#}")))?;
+    .map_err(|e| {
+        // a refusal before the work (an output folder that is not the program's) is bad input
+        let refused = e
+            .chain()
+            .any(|c| c.is::<impacting_cantilever::error::ParameterError>());
+        if refused {
+            Failure::Refused(format!("{e:#}"))
+        } else {
+            Failure::Other(format!("{e:#}"))
+        }
+    })?;
     for (name, secs) in &report.scene_seconds {
         errln!("scene {name:<18} {secs:>8.2} s");
     }

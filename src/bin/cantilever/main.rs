@@ -346,7 +346,7 @@ fn main() -> ExitCode {
         }
     };
     let command = cli.command.name();
-    match run(cli) {
+    let code = match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(Failure::Library(error::Error::Parameter(mut e))) => {
             // the library names its parameters by keyword; say the flag this command has
@@ -362,14 +362,24 @@ fn main() -> ExitCode {
             errln!("error: {e}");
             ExitCode::from(1)
         }
+        Err(Failure::Refused(e)) => {
+            errln!("error: {e}");
+            ExitCode::from(2)
+        }
         Err(Failure::Differs) => ExitCode::from(1),
-    }
+    };
+    // a signal being handled now holds the writes to the exit and ends with its own status
+    // (128 + the signal, after its message); one that comes later finds this run finished
+    let _finished = impacting_cantilever::results::files::finish_writes();
+    code
 }
 
 enum Failure {
     /// A failure of the library: its kind sets the exit status ([`error::Error::exit_code`]).
     Library(error::Error),
     Other(String),
+    /// Input refused before the work, with its context: exit 2.
+    Refused(String),
     /// A comparison found a difference (its report is already printed): exit 1, no message.
     Differs,
 }

@@ -7,6 +7,7 @@
 //! Modern Math font in `book/assets/math/` make it look right offline. No page loads
 //! anything from a CDN.
 
+mod build_dir;
 mod math;
 mod numbers;
 pub mod reuse;
@@ -94,6 +95,9 @@ pub fn build_only(
             root.display()
         );
     }
+    // the old pages may be replaced only if they are the program's (checked before the work)
+    build_dir::recover(root);
+    build_dir::check(&root.join("build"))?;
     let started = Instant::now();
     let generated = root.join("src").join("generated");
     let scenes = crate::results::scenes::all();
@@ -275,7 +279,8 @@ pub fn build_only(
         copy_dir(
             &root.join("assets/math/font"),
             &fresh.join("assets/math/font"),
-        )
+        )?;
+        build_dir::write_manifest(&fresh)
     });
     if let Err(e) = built {
         let _ = std::fs::remove_dir_all(&fresh);
@@ -285,6 +290,12 @@ pub fn build_only(
     let target = root.join("build");
     {
         let _writing = crate::results::files::writing();
+        // a user's files in the old pages go on in the new ones
+        if let Err(e) = build_dir::carry_over(&target, &fresh) {
+            let _ = std::fs::remove_dir_all(&fresh);
+            crate::results::files::unregister(&fresh);
+            return Err(e);
+        }
         if target.exists() {
             std::fs::rename(&target, &old).context("moving the previous book aside")?;
             crate::results::files::register_aside(&old, Some(&target));

@@ -16,7 +16,16 @@
 //! registered while they exist; [`remove_temporaries`] deletes them and puts back any old
 //! file moved aside (the command line calls it on SIGINT and SIGTERM).
 
-use crate::error::{Error, ParameterError};
+mod check;
+mod together;
+
+#[cfg(test)]
+pub(crate) use check::may_replace_in_sticky;
+pub use check::{check_writable, read_capped};
+pub(crate) use check::{probe, sticky_refusal};
+pub use together::write_together;
+
+use crate::error::Error;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -49,6 +58,13 @@ pub(crate) fn completed(path: &Path) {
     if let Ok(mut c) = COMPLETED.lock() {
         c.push(path.to_path_buf());
     }
+}
+
+/// Held from the end of the program's work to its exit: a signal's clean-up that began
+/// before holds the writes to its own exit (so the run ends with the signal's status and
+/// message, not with 0 after "interrupted"), and one that comes after waits for the exit.
+pub fn finish_writes() -> std::sync::MutexGuard<'static, ()> {
+    writing()
 }
 
 /// The outputs written whole so far, in order.
@@ -210,89 +226,6 @@ fn target(path: &Path) -> Target {
     }
 }
 
-/// Reads a text file of at most `max_bytes` (a key-number file, a state, a shard), so a
-/// wrong path — `/dev/zero`, a disk image — is refused after `max_bytes`, not after
-/// memory runs out. `flag` names the option and `what` the file expected, in the error.
-///
-/// # Errors
-/// [`ParameterError`] naming `flag` when the path is a directory, cannot be opened, is not
-/// UTF-8 text, or is longer than `max_bytes`.
-pub fn read_capped(
-    flag: &str,
-    path: &Path,
-    max_bytes: u64,
-    what: &str,
-) -> Result<String, ParameterError> {
-    use std::io::Read;
-    let bad = |why: String| ParameterError::new(flag, path.display(), &why);
-    if path.is_dir() {
-        return Err(bad(format!("{what} (it is a directory)")));
-    }
-    let file = std::fs::File::open(path).map_err(|e| bad(format!("{what}, readable ({e})")))?;
-    let mut text = String::new();
-    file.take(max_bytes + 1)
-        .read_to_string(&mut text)
-        .map_err(|e| bad(format!("{what}, as UTF-8 text ({e})")))?;
-    if text.len() as u64 > max_bytes {
-        return Err(bad(format!(
-            "{what} of at most {} (it is longer)",
-            human_bytes(max_bytes)
-        )));
-    }
-    Ok(text)
-}
-
-/// A byte count in the largest binary unit that keeps it whole or nearly.
-fn human_bytes(n: u64) -> String {
-    match n {
-        n if n >= 1 << 30 => format!("{} GiB", n >> 30),
-        n if n >= 1 << 20 => format!("{} MiB", n >> 20),
-        n if n >= 1 << 10 => format!("{} KiB", n >> 10),
-        n => format!("{n} bytes"),
-    }
-}
-
-/// Checks, before any work, that `path` can be written as a file (see the module doc):
-/// refused when it is a directory, a block device or a socket, or when its directory does
-/// not exist or does not accept a file. `flag` names the option in the error.
-///
-/// # Errors
-/// [`ParameterError`] naming `flag` for a path that is refused (a directory, a block device,
-/// a socket, a bad chain of links), ends in `/`, or lies in a missing or read-only directory.
-pub fn check_writable(flag: &str, path: &Path) -> Result<(), ParameterError> {
-    let bad = |why: String| ParameterError::new(flag, path.display(), &why);
-    // "new/" names a directory: a file cannot be created there (the system would say so
-    // only when the results are written, after the work)
-    if path.as_os_str().to_string_lossy().ends_with('/') && !path.exists() {
-        return Err(bad(
-            "a file path (this one ends in / and names no existing file)".into(),
-        ));
-    }
-    match target(path) {
-        Target::Refuse(why) => Err(bad(format!("a writable file path (it is {why})"))),
-        Target::Through(_) | Target::Descriptor(_) => Ok(()),
-        Target::Replace(p) => {
-            let dir = match p.parent() {
-                Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-                _ => PathBuf::from("."),
-            };
-            if !dir.is_dir() {
-                return Err(bad(format!(
-                    "a file in an existing directory ({} is not one)",
-                    dir.display()
-                )));
-            }
-            // a probe of a run killed between writing and removing it
-            remove_dead_temporaries(&dir, ".cantilever-probe.", "");
-            let probe = dir.join(format!(".cantilever-probe.{}", std::process::id()));
-            std::fs::write(&probe, b"")
-                .map_err(|e| bad(format!("a file in a writable directory ({e})")))?;
-            let _ = std::fs::remove_file(&probe);
-            Ok(())
-        }
-    }
-}
-
 /// Writes `text` to `path` as the module doc says: atomically for a regular file (or none),
 /// into a link's target, through a FIFO or character device; an error for anything else.
 ///
@@ -391,7 +324,20 @@ pub(crate) fn replace_file(p: &Path, text: &str) -> Result<(), Error> {
         let _ = std::fs::remove_file(&tmp);
     }
     unregister(&tmp);
+    sync_parent(p);
     renamed
+}
+
+/// Flushes the directory entry of `p` to the disk (after a rename), so a power loss cannot
+/// bring the old file back; a failure is not an error (some file systems do not support it).
+fn sync_parent(p: &Path) {
+    let dir = match p.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    if let Ok(d) = std::fs::File::open(dir) {
+        let _ = d.sync_all();
+    }
 }
 
 /// Writes `text` to a registered temporary beside `p`, on the disk and with `p`'s metadata,
@@ -409,16 +355,23 @@ fn prepare(p: &Path, text: &str) -> Result<PathBuf, Error> {
             dir
         };
         remove_dead_temporaries(dir, &format!(".{name}.cantilever-"), ".tmp");
+        remove_dead_temporaries(dir, &format!(".{name}.cantilever-old-"), ".tmp");
     }
     register(&tmp);
+    // an error names the user's path, not the hidden temporary's
     let written = std::fs::File::create(&tmp)
         .and_then(|mut f| {
             f.write_all(text.as_bytes())?;
             // on the disk before the rename, so a power loss cannot leave an empty file
             f.sync_all()
         })
-        .map_err(io(&tmp))
-        .and_then(|()| keep_metadata(p, &tmp));
+        .map_err(io(p))
+        .and_then(|()| {
+            keep_metadata(p, &tmp).map_err(|_| Error::Io {
+                path: p.display().to_string(),
+                source: std::io::Error::other("cannot give the new file the old one's mode"),
+            })
+        });
     match written {
         Ok(()) => Ok(tmp),
         Err(e) => {
@@ -427,67 +380,6 @@ fn prepare(p: &Path, text: &str) -> Result<PathBuf, Error> {
             Err(e)
         }
     }
-}
-
-/// Writes several files as one set (a run's `--dense` and `--final-state`): every file is
-/// written in full to a temporary before any is renamed into place, and the renames happen
-/// together with signals held off. A failure while writing (a full disk, a closed FIFO, a
-/// file-size limit) or SIGINT/SIGTERM before the renames leaves every old file as it was;
-/// only a SIGKILL or a power loss in the microseconds between two renames can leave one
-/// new file beside an old one. Files written through (a FIFO, a device, a standard stream)
-/// are written after the temporaries and before the renames.
-///
-/// # Errors
-/// [`Error::Io`] as [`write_atomically`], for the first file that fails; the others are
-/// then left as they were.
-pub fn write_together(files: &[(&Path, &str)]) -> Result<(), Error> {
-    let targets: Vec<Target> = files.iter().map(|(p, _)| target(p)).collect();
-    for ((path, _), t) in files.iter().zip(&targets) {
-        if let Target::Refuse(why) = t {
-            return Err(Error::Io {
-                path: path.display().to_string(),
-                source: std::io::Error::other(format!("cannot write a file here: it is {why}")),
-            });
-        }
-    }
-    let mut prepared: Vec<(PathBuf, PathBuf, &Path)> = Vec::new();
-    let discard = |prepared: &[(PathBuf, PathBuf, &Path)]| {
-        for (tmp, _, _) in prepared {
-            let _ = std::fs::remove_file(tmp);
-            unregister(tmp);
-        }
-    };
-    for ((path, text), t) in files.iter().zip(&targets) {
-        if let Target::Replace(p) = t {
-            // a signal's clean-up waits for (and then removes) the temporary being written
-            let _writing = writing();
-            match prepare(p, text) {
-                Ok(tmp) => prepared.push((tmp, p.clone(), path)),
-                Err(e) => {
-                    discard(&prepared);
-                    return Err(e);
-                }
-            }
-        }
-    }
-    for ((path, text), t) in files.iter().zip(&targets) {
-        if matches!(t, Target::Through(_) | Target::Descriptor(_)) {
-            if let Err(e) = write_atomically(path, text) {
-                discard(&prepared);
-                return Err(e);
-            }
-        }
-    }
-    let _writing = writing();
-    for (i, (tmp, p, path)) in prepared.iter().enumerate() {
-        if let Err(e) = std::fs::rename(tmp, p) {
-            discard(&prepared[i..]);
-            return Err(io(p)(e));
-        }
-        unregister(tmp);
-        completed(path);
-    }
-    Ok(())
 }
 
 /// Scratch folders of this band's unit tests.
