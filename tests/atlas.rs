@@ -61,10 +61,12 @@ fn sharded_atlas_is_identical_to_unsharded_for_any_thread_count() {
 
 #[test]
 fn merge_refuses_missing_repeated_and_mixed_shards() {
-    // two rows of one cell: the shards' contents do not matter to these refusals
+    // two rows of one cell at a fixed N: the shards' contents do not matter to these
+    // refusals (the matched rule's rows are the identity test's)
     let p = AtlasParams {
         k_points: 2,
         omega_points: 1,
+        modes: atlas::ModesRule::Fixed(10),
         ..small()
     };
     let part = |index, count| atlas::compute_shard(&p, Shard { index, count }, &Silent).unwrap();
@@ -260,7 +262,11 @@ fn a_cancelled_shard_stops_with_interrupted() {
             (*self).advance(units)
         }
     }
-    let p = AtlasParams::test();
+    // a fixed N: the rows start at once (the matched rule's own stop is the Python test's)
+    let p = AtlasParams {
+        modes: atlas::ModesRule::Fixed(10),
+        ..AtlasParams::test()
+    };
     let stop = StopAfter(AtomicU64::new(0), 2);
     let r = atlas::compute_shard(&p, Shard { index: 0, count: 1 }, &stop);
     assert!(matches!(r, Err(Error::Interrupted)), "{:?}", r.err());

@@ -155,6 +155,8 @@ fn atlas_shards_merge_into_the_unsharded_atlas() {
     let dir = std::env::temp_dir().join(format!("cantilever-atlas-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = |name: &str| dir.join(name).display().to_string();
+    // a fixed N: the shards agree on each row's N by construction (the matched rule's
+    // agreement across shards is the library's identity test)
     let small = [
         "--resolution",
         "test",
@@ -162,6 +164,8 @@ fn atlas_shards_merge_into_the_unsharded_atlas() {
         "2",
         "--omega-points",
         "2",
+        "--modes",
+        "10",
     ];
     let atlas = |shard: &str, out: &str| {
         let (code, _, err) =

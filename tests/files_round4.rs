@@ -464,6 +464,8 @@ fn item_2_a_signal_just_before_the_set_is_written_leaves_nothing() {
                 "2",
                 "--omega-points",
                 "1",
+                "--modes",
+                "10",
                 "--out",
                 &out,
             ],
