@@ -7,7 +7,7 @@ stop stiffness in units of k₁ = (β₁⁻)⁴ and frequencies in units of (β�
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from typing import Any, Optional
 
 import numpy as np
@@ -18,8 +18,49 @@ def _opt(x: Optional[float], fmt: str) -> str:
     return "—" if x is None else format(x, fmt)
 
 
-@dataclass(frozen=True, repr=False)
-class Events:
+def _same(a: Any, b: Any) -> bool:
+    """Equal values: arrays by shape and every element (NaN equal to NaN), floats with NaN
+    equal to NaN, anything else by ``==``."""
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        if not (isinstance(a, np.ndarray) and isinstance(b, np.ndarray)):
+            return False
+        if a.shape != b.shape or a.dtype != b.dtype:
+            return False
+        nan_aware = np.issubdtype(a.dtype, np.floating) or np.issubdtype(a.dtype, np.complexfloating)
+        return bool(np.array_equal(a, b, equal_nan=nan_aware))
+    if isinstance(a, float) and isinstance(b, float) and a != a and b != b:
+        return True
+    if isinstance(a, (list, tuple)) and isinstance(b, (list, tuple)):
+        return type(a) is type(b) and len(a) == len(b) and all(map(_same, a, b))
+    return bool(a == b)
+
+
+class _Result:
+    """A result's common behaviour: its arrays are read-only (a frozen result cannot be
+    changed through them), and two results are equal when every field is, arrays compared
+    element by element (the generated ``==`` of a dataclass would compare arrays to an
+    array of truth values and raise); a measurement such as the wall time is not compared."""
+
+    def __post_init__(self) -> None:
+        for f in fields(self):  # type: ignore[arg-type]
+            v = getattr(self, f.name)
+            if isinstance(v, np.ndarray):
+                v.flags.writeable = False
+
+    def __eq__(self, other: object) -> bool:
+        if type(other) is not type(self):
+            return NotImplemented
+        return all(
+            _same(getattr(self, f.name), getattr(other, f.name))
+            for f in fields(self)  # type: ignore[arg-type]
+            if f.compare
+        )
+
+    __hash__ = None  # type: ignore[assignment]
+
+
+@dataclass(frozen=True, repr=False, eq=False)
+class Events(_Result):
     """The contact events of a recorded window (impacts, for the rigid model), in order."""
 
     #: t, the time of each event (non-dimensional beam time).
@@ -49,8 +90,8 @@ class Events:
         return f"Events({len(self)} events, {entries} entries into contact)"
 
 
-@dataclass(frozen=True, repr=False)
-class Dense:
+@dataclass(frozen=True, repr=False, eq=False)
+class Dense(_Result):
     """Dense output of a recorded window on the grid t = cycle·T + j·T/per_period."""
 
     #: t of each sample.
@@ -71,8 +112,8 @@ class Dense:
         return f"Dense({len(self)} samples of t, in_contact, tip, tip_velocity, state)"
 
 
-@dataclass(frozen=True, repr=False)
-class Simulation:
+@dataclass(frozen=True, repr=False, eq=False)
+class Simulation(_Result):
     """What :func:`~impacting_cantilever.simulate` gives: a transient discarded, then a
     recorded window."""
 
@@ -123,8 +164,9 @@ class Simulation:
     start: str
     periods: int
     record: int
-    #: Wall time of the computation (the interpreter released), seconds.
-    wall_seconds: float
+    #: Wall time of the computation (the interpreter released), seconds (a measurement, not
+    #: part of the result: two equal runs compare equal whatever it is).
+    wall_seconds: float = field(compare=False)
 
     def __repr__(self) -> str:
         orbit = (
@@ -142,8 +184,8 @@ class Simulation:
         )
 
 
-@dataclass(frozen=True, repr=False)
-class Orbit:
+@dataclass(frozen=True, repr=False, eq=False)
+class Orbit(_Result):
     """A periodic orbit by Newton shooting on the stroboscopic map, with its Floquet
     multipliers (the eigenvalues of the exact monodromy matrix)."""
 
@@ -181,8 +223,8 @@ class Orbit:
         )
 
 
-@dataclass(frozen=True)
-class Bifurcation:
+@dataclass(frozen=True, eq=False)
+class Bifurcation(_Result):
     """A bifurcation between two points of a branch."""
 
     #: "Fold", "PeriodDoubling", "NeimarkSacker", "BranchPoint" or "Grazing".
@@ -199,8 +241,8 @@ class Bifurcation:
     stable: tuple[bool, bool]
 
 
-@dataclass(frozen=True, repr=False)
-class Branch:
+@dataclass(frozen=True, repr=False, eq=False)
+class Branch(_Result):
     """A traced branch of period-m orbits, one entry per point (arclength order)."""
 
     period_m: int
@@ -275,8 +317,8 @@ def _branch(b: dict[str, Any]) -> Branch:
     )
 
 
-@dataclass(frozen=True, repr=False)
-class Continuation:
+@dataclass(frozen=True, repr=False, eq=False)
+class Continuation(_Result):
     """The branches of a continuation: branch 0 runs towards ``to``, branch 1 (unless
     one-way) the other way, then the branches born at period doublings."""
 
@@ -295,8 +337,8 @@ class Continuation:
         return "\n".join(lines)
 
 
-@dataclass(frozen=True, repr=False)
-class EnergeticRestitution:
+@dataclass(frozen=True, repr=False, eq=False)
+class EnergeticRestitution(_Result):
     """r_E (eq 39) of the orbit a run settles on, with each contact's r̃_E (eq 38)."""
 
     #: The orbit's (m, n) label, or "not periodic".
@@ -323,8 +365,8 @@ class EnergeticRestitution:
         )
 
 
-@dataclass(frozen=True)
-class Study:
+@dataclass(frozen=True, eq=False)
+class Study(_Result):
     """A refinement study of one observable over N (Richardson limit, GCI uncertainty)."""
 
     sizes: NDArray[np.int64]
@@ -336,8 +378,8 @@ class Study:
     scale: float
 
 
-@dataclass(frozen=True, repr=False)
-class ModesNeeded:
+@dataclass(frozen=True, repr=False, eq=False)
+class ModesNeeded(_Result):
     """How many Galerkin modes resolve a stop of stiffness k to a relative accuracy."""
 
     stop_stiffness: float

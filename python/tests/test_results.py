@@ -1,0 +1,31 @@
+"""Results behave as values: two equal computations compare equal (arrays element by
+element; a measured wall time is not part of the result), a different one does not, and a
+frozen result cannot be changed through its arrays."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import impacting_cantilever as ic
+
+
+def test_equal_results_compare_equal_and_different_ones_do_not() -> None:
+    m = ic.problems.figure4(2)
+    assert ic.find_orbit(m) == ic.find_orbit(m)
+    assert ic.simulate(m, 20, 4) == ic.simulate(m, 20, 4)
+    assert ic.simulate(m, 20, 4) != ic.simulate(m, 21, 4)
+    assert ic.energetic_restitution(m) == ic.energetic_restitution(m)
+    assert ic.find_orbit(m) != ic.find_orbit(ic.problems.figure4(3))
+    with pytest.raises(TypeError):
+        hash(ic.find_orbit(m))  # equal by value, so not hashable by identity
+
+
+def test_arrays_of_a_result_are_read_only() -> None:
+    m = ic.problems.figure4(2)
+    orbit = ic.find_orbit(m)
+    run = ic.simulate(m, 20, 4, dense_per_period=8)
+    for a in (orbit.state, orbit.multipliers, run.final_state, run.events.time, run.dense.state):
+        assert isinstance(a, np.ndarray)
+        with pytest.raises(ValueError, match="read-only"):
+            a[0] = 0
