@@ -42,6 +42,11 @@ def _state(start: Optional[ArrayLike]) -> Optional[NDArray[np.float64]]:
     the library)."""
     if start is None:
         return None
+    if np.iscomplexobj(start):
+        # numpy would drop the imaginary parts with a warning only
+        raise ParameterError(
+            "invalid start: got complex numbers; allowed: a vector of 2N real numbers [η; η̇]"
+        )
     x = np.ascontiguousarray(start, dtype=np.float64)
     if x.ndim != 1:
         raise ParameterError(

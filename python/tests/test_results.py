@@ -29,3 +29,11 @@ def test_arrays_of_a_result_are_read_only() -> None:
         assert isinstance(a, np.ndarray)
         with pytest.raises(ValueError, match="read-only"):
             a[0] = 0
+
+
+def test_a_complex_start_is_refused_not_made_real() -> None:
+    m = ic.problems.figure4(1)
+    with pytest.raises(ic.errors.ParameterError, match="complex"):
+        ic.find_orbit(m, np.array([0.1 + 1j, 0.0]))
+    with pytest.raises(ValueError, match="complex"):
+        ic.simulate(m, 10, start=np.zeros(2, dtype=complex))
