@@ -110,7 +110,12 @@ def simulate(
         progress,
         energy,
     )
-    d["events"] = Events(**d["events"])
+    events = d["events"]
+    if model.kind == "rigid" and events["outgoing_tip_velocity"] is None:
+        # a rigid run without impacts: empty arrays of the rigid model's fields, not None
+        events["outgoing_tip_velocity"] = np.zeros(0)
+        events["modal_velocities_after"] = np.zeros((0, model.n))
+    d["events"] = Events(**events)
     if d["dense"] is not None:
         d["dense"] = Dense(**d["dense"])
     return Simulation(**d)

@@ -168,11 +168,12 @@ pub fn check_set(flag: &str, dir: &Path, names: &[&str]) -> Result<(), Parameter
 
 /// Writes `bytes` to a new file at `path` and flushes it to the disk before the renames
 /// that depend on it, so a power loss after the commit cannot leave an empty file in place.
-fn write_synced(path: &Path, bytes: &[u8]) -> Result<(), Error> {
+/// An error names `shown`, the file the user asked for, not the hidden temporary.
+fn write_synced(path: &Path, shown: &Path, bytes: &[u8]) -> Result<(), Error> {
     use std::io::Write;
-    let mut f = std::fs::File::create(path).map_err(io(path))?;
-    f.write_all(bytes).map_err(io(path))?;
-    f.sync_all().map_err(io(path))
+    let mut f = std::fs::File::create(path).map_err(io(shown))?;
+    f.write_all(bytes).map_err(io(shown))?;
+    f.sync_all().map_err(io(shown))
 }
 
 fn io(path: &Path) -> impl Fn(std::io::Error) -> Error + '_ {
@@ -240,7 +241,7 @@ fn write_set_in(dir: &Path, set: &[(String, String)]) -> Result<(), Error> {
         let tmp = temporary(&dir, name, pid, "tmp");
         register(&tmp);
         written.push(tmp.clone());
-        let made = write_synced(&tmp, text.as_bytes())
+        let made = write_synced(&tmp, &dir.join(name), text.as_bytes())
             .and_then(|()| files::keep_metadata(&dir.join(name), &tmp));
         if let Err(e) = made {
             for t in &written {
@@ -266,7 +267,7 @@ fn write_set_in(dir: &Path, set: &[(String, String)]) -> Result<(), Error> {
     // registered first: a journal cut short by a full disk or a signal is removed with the
     // temporaries, not left to name a transaction that never began
     register(&dir.join(JOURNAL));
-    if let Err(e) = write_synced(&dir.join(JOURNAL), journal.to_string().as_bytes()) {
+    if let Err(e) = write_synced(&dir.join(JOURNAL), &dir, journal.to_string().as_bytes()) {
         for t in written.iter().chain([&dir.join(JOURNAL)]) {
             let _ = std::fs::remove_file(t);
             unregister(t);

@@ -89,10 +89,16 @@ pub fn write_together(files: &[(&Path, &str)]) -> Result<(), Error> {
     }
     for (i, (tmp, p, path)) in prepared.iter().enumerate() {
         if let Err(e) = std::fs::rename(tmp, p) {
-            for ((_, done, _), old) in prepared[..i].iter().zip(&kept) {
-                match old {
+            // put back the files already replaced; an old file that cannot be put back
+            // stays where it was kept, and the message says where
+            let mut stranded = Vec::new();
+            for ((_, done, _), old) in prepared[..i].iter().zip(kept.iter_mut()) {
+                match old.take() {
                     Some(b) => {
-                        let _ = std::fs::rename(b, done);
+                        if std::fs::rename(&b, done).is_err() {
+                            unregister(&b);
+                            stranded.push(format!("{} is in {}", done.display(), b.display()));
+                        }
                     }
                     None => {
                         let _ = std::fs::remove_file(done);
@@ -101,9 +107,17 @@ pub fn write_together(files: &[(&Path, &str)]) -> Result<(), Error> {
             }
             drop_kept(&kept);
             discard(&prepared);
+            let state = if stranded.is_empty() {
+                "every file of the set is as it was".to_string()
+            } else {
+                format!(
+                    "an earlier file of the set could not be put back: the old contents of {}",
+                    stranded.join(", ")
+                )
+            };
             return Err(Error::Io {
                 path: path.display().to_string(),
-                source: std::io::Error::other(format!("{e}; every file of the set is as it was")),
+                source: std::io::Error::other(format!("{e}; {state}")),
             });
         }
     }
