@@ -114,7 +114,7 @@ def simulate(
     if model.kind == "rigid" and events["outgoing_tip_velocity"] is None:
         # a rigid run without impacts: empty arrays of the rigid model's fields, not None
         events["outgoing_tip_velocity"] = np.zeros(0)
-        events["modal_velocities_after"] = np.zeros((0, model.n))
+        events["modal_velocities_after"] = np.zeros((0, model.modes))
     d["events"] = Events(**events)
     if d["dense"] is not None:
         d["dense"] = Dense(**d["dense"])

@@ -37,3 +37,15 @@ def test_a_complex_start_is_refused_not_made_real() -> None:
         ic.find_orbit(m, np.array([0.1 + 1j, 0.0]))
     with pytest.raises(ValueError, match="complex"):
         ic.simulate(m, 10, start=np.zeros(2, dtype=complex))
+
+
+def test_a_rigid_run_without_impacts_has_empty_arrays() -> None:
+    base = ic.compliant(1, zeta1=0.01, omega=2, stop_stiffness=100, gap=50)
+    run = ic.simulate(ic.rigid(base, law="newton", restitution=0.8), 10, 2)
+    assert len(run.events) == 0
+    assert run.events.outgoing_tip_velocity is not None
+    assert run.events.outgoing_tip_velocity.shape == (0,)
+    assert run.events.modal_velocities_after is not None
+    assert run.events.modal_velocities_after.shape == (0, 1)
+    # the compliant model has no outgoing velocities at all
+    assert ic.simulate(base, 10, 2).events.outgoing_tip_velocity is None
