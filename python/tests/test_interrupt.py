@@ -30,6 +30,9 @@ def _interrupted_after(delay: float, call: Callable[[], Any]) -> float:
         sent.append(time.monotonic())
         os.kill(os.getpid(), signal.SIGINT)
 
+    # Python installs its KeyboardInterrupt handler only when SIGINT is not ignored at its
+    # start, and a shell starts background jobs with SIGINT ignored: install it here
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
     timer = threading.Timer(delay, interrupt)
     timer.start()
     try:
@@ -38,6 +41,7 @@ def _interrupted_after(delay: float, call: Callable[[], Any]) -> float:
         return time.monotonic() - sent[0]
     finally:
         timer.cancel()
+        signal.signal(signal.SIGINT, previous)
 
 
 LONG_CALLS: dict[str, Callable[[], Any]] = {
