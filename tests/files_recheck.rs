@@ -59,6 +59,32 @@ fn dense_and_final_state_are_written_as_one_set() {
     assert_eq!(listing(&d), ["p.csv", "s.json"]);
 }
 
+/// `pair("A.csv", "B.json")` in `d` with the renames numbered `when` failing (EPERM,
+/// injected by strace): its exit status and standard error.
+fn with_failed_renames(d: &std::path::Path, when: &str) -> (Option<i32>, String) {
+    let out = Command::new("strace")
+        .args([
+            "-o",
+            "/dev/null",
+            "-f",
+            "-e",
+            "trace=rename,renameat,renameat2",
+            "-e",
+        ])
+        .arg(format!(
+            "inject=rename,renameat,renameat2:error=EPERM:when={when}"
+        ))
+        .arg(env!("CARGO_BIN_EXE_cantilever"))
+        .args(pair("A.csv", "B.json"))
+        .current_dir(d)
+        .output()
+        .unwrap();
+    (
+        out.status.code(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
 /// The rerun's finding: a rename that fails after the first file of the pair is in place
 /// (a file made immutable, a sticky folder) left the new dense file beside the old state.
 /// Now the first is put back. The failure is injected at the second rename (needs strace).
@@ -71,46 +97,16 @@ fn a_failing_second_rename_puts_the_first_file_back() {
     let d = scratch("recheck-rename");
     std::fs::write(d.join("A.csv"), "old A").unwrap();
     std::fs::write(d.join("B.json"), "old B").unwrap();
-    let out = Command::new("strace")
-        .args([
-            "-o",
-            "/dev/null",
-            "-f",
-            "-e",
-            "trace=rename,renameat,renameat2",
-            "-e",
-        ])
-        .arg("inject=rename,renameat,renameat2:error=EPERM:when=2")
-        .arg(env!("CARGO_BIN_EXE_cantilever"))
-        .args(pair("A.csv", "B.json"))
-        .current_dir(&d)
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(1), "{err}");
+    let (code, err) = with_failed_renames(&d, "2");
+    assert_eq!(code, Some(1), "{err}");
     assert!(err.contains("B.json") && err.contains("as it was"), "{err}");
     assert_eq!(std::fs::read_to_string(d.join("A.csv")).unwrap(), "old A");
     assert_eq!(std::fs::read_to_string(d.join("B.json")).unwrap(), "old B");
     assert_eq!(listing(&d), ["A.csv", "B.json"], "temporaries left: {err}");
     // the put-back fails too: the old A is kept where it was set aside, and the message
     // says where (it was deleted, and the message said every file was as it was)
-    let out = Command::new("strace")
-        .args([
-            "-o",
-            "/dev/null",
-            "-f",
-            "-e",
-            "trace=rename,renameat,renameat2",
-            "-e",
-        ])
-        .arg("inject=rename,renameat,renameat2:error=EPERM:when=2..3")
-        .arg(env!("CARGO_BIN_EXE_cantilever"))
-        .args(pair("A.csv", "B.json"))
-        .current_dir(&d)
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(1), "{err}");
+    let (code, err) = with_failed_renames(&d, "2..3");
+    assert_eq!(code, Some(1), "{err}");
     assert!(err.contains("could not be put back"), "{err}");
     let kept: Vec<String> = listing(&d)
         .into_iter()
