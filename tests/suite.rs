@@ -20,6 +20,7 @@ mod continuation;
 mod continuum;
 mod convergence;
 mod critical_damping;
+mod curves;
 mod diff;
 mod energetic;
 mod files_recheck;

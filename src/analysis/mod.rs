@@ -3,6 +3,7 @@
 pub mod atlas;
 pub mod continuation;
 pub mod convergence;
+pub mod curves;
 pub mod energetic;
 pub mod find_orbit;
 pub mod harmonics;

@@ -205,8 +205,8 @@ const CORRECTOR_TOLERANCE: f64 = 1e-9;
 const DU: f64 = 1e-6;
 
 /// Scaled coordinates: x = scale ⊙ ξ.
-struct Scaled {
-    scale: DVector<f64>,
+pub(crate) struct Scaled {
+    pub(crate) scale: DVector<f64>,
 }
 
 impl Scaled {
@@ -214,7 +214,7 @@ impl Scaled {
     /// and half the free tip amplitude (A_free, ωA_free; φⱼ(1) = ±2, so ηⱼ ~ A/2): the
     /// forced response's own size, so that a state entry passing near 0 at the start does
     /// not shrink the scale.
-    fn new(x: &DVector<f64>, floor: (f64, f64)) -> Self {
+    pub(crate) fn new(x: &DVector<f64>, floor: (f64, f64)) -> Self {
         let n = x.len() / 2;
         let block = |r: std::ops::Range<usize>, floor: f64| {
             r.map(|i| x[i].abs())
@@ -226,10 +226,10 @@ impl Scaled {
             scale: DVector::from_fn(x.len(), |i, _| if i < n { d } else { v }),
         }
     }
-    fn to_xi(&self, x: &DVector<f64>) -> DVector<f64> {
+    pub(crate) fn to_xi(&self, x: &DVector<f64>) -> DVector<f64> {
         x.component_div(&self.scale)
     }
-    fn to_x(&self, xi: &DVector<f64>) -> DVector<f64> {
+    pub(crate) fn to_x(&self, xi: &DVector<f64>) -> DVector<f64> {
         xi.component_mul(&self.scale)
     }
 }
@@ -270,7 +270,7 @@ fn linearise(family: &Family, sc: &Scaled, z: &DVector<f64>, m: u64) -> Result<L
 }
 
 /// The unit tangent: the null vector of the d × (d + 1) Jacobian, oriented along `prev`.
-fn tangent(jacobian: &DMatrix<f64>, prev: &DVector<f64>) -> Option<DVector<f64>> {
+pub(crate) fn tangent(jacobian: &DMatrix<f64>, prev: &DVector<f64>) -> Option<DVector<f64>> {
     let d = jacobian.nrows();
     let mut a = DMatrix::zeros(d + 1, d + 1);
     a.view_mut((0, 0), (d, d + 1)).copy_from(jacobian);

@@ -25,6 +25,10 @@ pub struct OrbitShape {
     pub impact_velocities: Vec<f64>,
     /// The smallest |d_ext − d₀| over interior local extrema of d (None if d has none).
     pub grazing_distance: Option<f64>,
+    /// d_ext − d₀ for that extremum, signed: it passes through 0 at a grazing (the test
+    /// function of a grazing curve, [`crate::analysis::curves`]).
+    #[serde(skip)]
+    pub nearest_extremum: Option<f64>,
     /// The largest tip displacement.
     pub max_tip: f64,
 }
@@ -107,9 +111,11 @@ impl Observer for ShapeObserver {
                     hi = mid;
                 }
             }
-            let dist = (sig.tip(0.5 * (lo + hi)).0 - self.gap).abs();
-            let g = &mut self.shape.grazing_distance;
-            *g = Some(g.map_or(dist, |x: f64| x.min(dist)));
+            let signed = sig.tip(0.5 * (lo + hi)).0 - self.gap;
+            if self.shape.grazing_distance.is_none_or(|g| signed.abs() < g) {
+                self.shape.grazing_distance = Some(signed.abs());
+                self.shape.nearest_extremum = Some(signed);
+            }
         }
     }
 

@@ -1,0 +1,240 @@
+//! The defining systems of the codimension-one points, on the shooting problem
+//! G(x; p, q) = P^m(x) − x = 0, each closed by one scalar test function s(x, p, q) = 0:
+//!
+//! - **fold**: M − I singular (a multiplier at +1);
+//! - **period doubling**: M + I singular (a multiplier at −1);
+//! - **grazing**: the interior extremum of the tip displacement nearest the stop touches it,
+//!   s = (d_ext − d₀)/A_free ([`crate::analysis::continuation::shape`]).
+//!
+//! For the two matrix conditions s is the **bordered** test function (Govaerts, *Numerical
+//! methods for bifurcations of dynamical equilibria*, SIAM 2000, §3.4; the minimally
+//! augmented systems of MatCont and BifurcationKit): with A = M ∓ I and border vectors b, c
+//! close to A's left and right null vectors,
+//!
+//! ```text
+//! [ A   b ] [w]   [0]
+//! [ cᵀ  0 ] [s] = [1],     s = 0 ⇔ A singular,     ∂s/∂z = −ψᵀ (∂A/∂z) w,
+//! ```
+//!
+//! with ψ from the transposed system. ∂A/∂xⱼ w is the second derivative D²P^m[eⱼ, w], and
+//! D²P^m is symmetric, so the whole row ψᵀ(∂A/∂x)w comes from one extra monodromy, at x + hw:
+//! (M(x + hw) − M(x))/h = D²P^m[w, ·] + O(h). The parameter derivatives are forward
+//! differences (step h = 1e-6 in ln p, ln q). These approximations change only Newton's
+//! rate, not the point it converges to: G and s are evaluated exactly (to round-off).
+//!
+//! Everything is in the scaled coordinates ξ of [`crate::analysis::continuation`].
+
+use super::{CurveKind, Family2};
+use crate::analysis::continuation::Scaled;
+use crate::analysis::continuation::ShapeObserver;
+use crate::analysis::orbit::relative_residual;
+use crate::analysis::shooting::map_with_jacobian;
+use crate::engine::sim::Simulator;
+use crate::error::Error;
+use nalgebra::{DMatrix, DVector};
+
+/// Difference step in the state (scaled) and in ln p, ln q.
+const H: f64 = 1e-6;
+
+/// The border vectors of the bordered test function (unit length).
+#[derive(Debug, Clone)]
+pub(super) struct Borders {
+    b: DVector<f64>,
+    c: DVector<f64>,
+}
+
+/// The system at one point z = (ξ, u = ln p, v = ln q).
+pub(super) struct Linear {
+    /// (G̃, s): n + 1 values.
+    pub f: DVector<f64>,
+    /// ∂(G̃, s)/∂(ξ, u, v): (n + 1) × (n + 2).
+    pub jacobian: DMatrix<f64>,
+    /// ‖P^m(x) − x‖∞/‖x‖∞.
+    pub residual: f64,
+    /// The right and left null vector estimates w, ψ (fold and period doubling), for the
+    /// next borders.
+    null: Option<(DVector<f64>, DVector<f64>)>,
+}
+
+impl Linear {
+    /// Borders for the next point: the current null vector estimates, normalised.
+    pub fn next_borders(&self, old: &Borders) -> Borders {
+        match &self.null {
+            Some((w, psi)) if w.norm() > 0.0 && psi.norm() > 0.0 => Borders {
+                b: psi.normalize(),
+                c: w.normalize(),
+            },
+            _ => old.clone(),
+        }
+    }
+}
+
+/// The sign σ in A = M + σI.
+fn sigma(kind: CurveKind) -> f64 {
+    match kind {
+        CurveKind::Fold => -1.0,
+        CurveKind::PeriodDoubling | CurveKind::Grazing => 1.0,
+    }
+}
+
+/// M in scaled coordinates: S⁻¹MS.
+fn scaled(sc: &Scaled, m: &DMatrix<f64>) -> DMatrix<f64> {
+    DMatrix::from_fn(m.nrows(), m.ncols(), |i, j| {
+        m[(i, j)] * sc.scale[j] / sc.scale[i]
+    })
+}
+
+/// Borders from the SVD of A = M ∓ I at a point near the bifurcation: the singular vectors
+/// of its smallest singular value (for grazing: unused, any unit vectors).
+pub(super) fn initial_borders(
+    kind: CurveKind,
+    sc: &Scaled,
+    mono: &DMatrix<f64>,
+) -> Result<Borders, Error> {
+    let n = mono.nrows();
+    let a = scaled(sc, mono) + DMatrix::identity(n, n) * sigma(kind);
+    let svd = a.svd(true, true);
+    let (u, vt) = match (svd.u, svd.v_t) {
+        (Some(u), Some(vt)) => (u, vt),
+        _ => {
+            return Err(Error::NotConverged {
+                message: "the SVD of the monodromy did not converge".into(),
+                residual: None,
+            })
+        }
+    };
+    let k = svd
+        .singular_values
+        .iter()
+        .enumerate()
+        .min_by(|a, b| a.1.total_cmp(b.1))
+        .map_or(0, |(k, _)| k);
+    Ok(Borders {
+        b: u.column(k).into_owned(),
+        c: vt.row(k).transpose(),
+    })
+}
+
+/// Solves the bordered system and its transpose: (w, s, ψ).
+fn bordered(a: &DMatrix<f64>, borders: &Borders) -> Option<(DVector<f64>, f64, DVector<f64>)> {
+    let n = a.nrows();
+    let mut big = DMatrix::zeros(n + 1, n + 1);
+    big.view_mut((0, 0), (n, n)).copy_from(a);
+    big.view_mut((0, n), (n, 1)).copy_from(&borders.b);
+    big.view_mut((n, 0), (1, n))
+        .copy_from(&borders.c.transpose());
+    let mut e = DVector::zeros(n + 1);
+    e[n] = 1.0;
+    let right = big.clone().lu().solve(&e)?;
+    let left = big.transpose().lu().solve(&e)?;
+    let ok = right.iter().chain(left.iter()).all(|v| v.is_finite());
+    ok.then(|| {
+        (
+            right.rows(0, n).into_owned(),
+            right[n],
+            left.rows(0, n).into_owned(),
+        )
+    })
+}
+
+/// The grazing test function at x: (d_ext − d₀)/A_free of the extremum nearest the stop.
+fn grazing_test(sim: &Simulator, x: &DVector<f64>, m: u64) -> Result<f64, Error> {
+    let mut obs = ShapeObserver::new(sim);
+    sim.run(x, m, &mut obs)?;
+    let scale = sim.model().free_tip_amplitude().0;
+    obs.finish()
+        .nearest_extremum
+        .map(|d| d / scale)
+        .ok_or_else(|| {
+            Error::Unsupported(
+                "the orbit's tip displacement has no interior extremum: no grazing to follow"
+                    .into(),
+            )
+        })
+}
+
+/// The defining system of `kind` for period-m orbits.
+pub(super) struct System<'f, 'a> {
+    pub family: &'f Family2<'a>,
+    pub kind: CurveKind,
+    pub m: u64,
+    pub sc: Scaled,
+}
+
+impl System<'_, '_> {
+    /// The state x of z.
+    pub fn state(&self, z: &DVector<f64>) -> DVector<f64> {
+        let n = z.len() - 2;
+        self.sc.to_x(&z.rows(0, n).into_owned())
+    }
+
+    /// (G̃, s) and their Jacobian at z = (ξ, u, v).
+    ///
+    /// # Errors
+    /// A model the family refuses at (p, q) ([`Error::Parameter`]), a run's error, or
+    /// [`Error::NotConverged`] when the bordered system is singular.
+    pub fn linearise(&self, z: &DVector<f64>, borders: &Borders) -> Result<Linear, Error> {
+        let n = z.len() - 2;
+        let (u, v) = (z[n], z[n + 1]);
+        let x = self.state(z);
+        let sim = self.family.simulator(u.exp(), v.exp())?;
+        let (px, mono, _) = map_with_jacobian(&sim, &x, self.m)?;
+        let shifted = [
+            self.family.simulator((u + H).exp(), v.exp())?,
+            self.family.simulator(u.exp(), (v + H).exp())?,
+        ];
+        let s_scale = &self.sc.scale;
+        let mut jacobian = DMatrix::zeros(n + 1, n + 2);
+        jacobian
+            .view_mut((0, 0), (n, n))
+            .copy_from(&(scaled(&self.sc, &mono) - DMatrix::identity(n, n)));
+        let mut f = DVector::zeros(n + 1);
+        f.rows_mut(0, n)
+            .copy_from(&(&px - &x).component_div(s_scale));
+        let mut null = None;
+        match self.kind {
+            CurveKind::Fold | CurveKind::PeriodDoubling => {
+                let a = scaled(&self.sc, &mono) + DMatrix::identity(n, n) * sigma(self.kind);
+                let (w, s, psi) = bordered(&a, borders).ok_or_else(|| Error::NotConverged {
+                    message: "the bordered test system is singular".into(),
+                    residual: None,
+                })?;
+                f[n] = s;
+                // ∂s/∂ξ = −ψᵀ S⁻¹ D²P[Sw, ·] S, from one monodromy at x + h·Sw
+                let (_, mono_w, _) = map_with_jacobian(&sim, &(&x + self.sc.to_x(&w) * H), self.m)?;
+                let d2 = scaled(&self.sc, &((mono_w - &mono) / H));
+                let row = -(psi.transpose() * d2);
+                jacobian.view_mut((n, 0), (1, n)).copy_from(&row);
+                for (col, sim_h) in shifted.iter().enumerate() {
+                    let (px_h, mono_h, _) = map_with_jacobian(sim_h, &x, self.m)?;
+                    let dg = (&px_h - &px).component_div(s_scale) / H;
+                    jacobian.view_mut((0, n + col), (n, 1)).copy_from(&dg);
+                    let da = scaled(&self.sc, &((mono_h - &mono) / H));
+                    jacobian[(n, n + col)] = -(psi.transpose() * da * &w)[0];
+                }
+                null = Some((w, psi));
+            }
+            CurveKind::Grazing => {
+                let s = grazing_test(&sim, &x, self.m)?;
+                f[n] = s;
+                for j in 0..n {
+                    let mut xj = x.clone();
+                    xj[j] += H * s_scale[j];
+                    jacobian[(n, j)] = (grazing_test(&sim, &xj, self.m)? - s) / H;
+                }
+                for (col, sim_h) in shifted.iter().enumerate() {
+                    let px_h = sim_h.run(&x, self.m, &mut ())?.state;
+                    let dg = (&px_h - &px).component_div(s_scale) / H;
+                    jacobian.view_mut((0, n + col), (n, 1)).copy_from(&dg);
+                    jacobian[(n, n + col)] = (grazing_test(sim_h, &x, self.m)? - s) / H;
+                }
+            }
+        }
+        Ok(Linear {
+            f,
+            jacobian,
+            residual: relative_residual(&px, &x),
+            null,
+        })
+    }
+}

@@ -1,0 +1,243 @@
+//! Two-parameter continuation of codimension-one points (issue: the atlas's boundaries),
+//! checked against things the continuation did not compute: closed forms of the one-mode
+//! oscillator, and one-parameter continuation runs that cross the curves.
+
+use impacting_cantilever::analysis::continuation::Parameter;
+use impacting_cantilever::analysis::curves::{self, CurveKind, CurveSettings, Family2};
+use impacting_cantilever::base::progress::Silent;
+use impacting_cantilever::model::problems::{self, Forced};
+use nalgebra::DVector;
+
+/// The one-mode oscillator's steady tip amplitude without the stop, in units of its value
+/// at resonance: η̈ + 2ζω₁η̇ + ω₁²η = F cos ωt has amplitude F/√((ω₁² − ω²)² + (2ζω₁ω)²),
+/// so with r = ω/ω₁ the ratio to r = 1 is 2ζ/√((1 − r²)² + (2ζr)²).
+fn linear_amplitude(zeta: f64, r: f64) -> f64 {
+    2.0 * zeta / ((1.0 - r * r).powi(2) + (2.0 * zeta * r).powi(2)).sqrt()
+}
+
+/// The non-impacting orbit grazes the stop where d₀ equals its amplitude: along the whole
+/// grazing curve in (d₀, ω) the computed d₀ is the closed form's. Tolerance: the corrector
+/// stops at 1e-9 (test and orbit residual, relative to A_free) and the polished orbit's
+/// own test residual is reported; 1e-8 leaves a factor 10 over both.
+#[test]
+fn the_one_mode_grazing_curve_is_the_linear_response_amplitude() {
+    let zeta = 0.05;
+    let base = Forced {
+        modes: 1,
+        zeta1: zeta,
+        gap: 1.0,
+        ..problems::figure4(1)
+    };
+    let family = Family2::forced(base, Parameter::Gap, Parameter::Frequency).unwrap();
+    let omega0 = 0.8;
+    // the non-impacting orbit at d₀ 20 % above its amplitude
+    let d_start = 1.2 * linear_amplitude(zeta, omega0);
+    let x0 = DVector::zeros(2);
+    let settings = CurveSettings::new((1e-3, 10.0), (0.5, 1.6));
+    let curve = curves::trace_curve(
+        &family,
+        CurveKind::Grazing,
+        &x0,
+        (d_start, omega0),
+        1,
+        &settings,
+        &Silent,
+    )
+    .unwrap();
+    eprintln!("{} points, ends {:?}", curve.points.len(), curve.ends);
+    assert!(curve.points.len() > 20, "{} points", curve.points.len());
+    let (lo, hi) = curve
+        .points
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(a, b), p| {
+            (a.min(p.q), b.max(p.q))
+        });
+    assert!(lo < 0.55 && hi > 1.55, "ω covered only {lo}…{hi}");
+    for p in &curve.points {
+        let exact = linear_amplitude(zeta, p.q);
+        assert!(
+            (p.p - exact).abs() <= 1e-8 * exact,
+            "ω = {}: d₀ = {} against {exact}",
+            p.q,
+            p.p
+        );
+        assert!(p.test_residual <= 1e-8, "{}", p.test_residual);
+        assert!(p.orbit_residual <= 1e-12, "{}", p.orbit_residual);
+    }
+}
+
+/// The Figure 4 orbit of N modes (k = 100k₁, ω = 2(β₁⁻)², 1000 periods from rest) continued
+/// in `parameter` towards `to`: its branch.
+fn branch(
+    n: usize,
+    k: f64,
+    parameter: Parameter,
+    from: f64,
+    to: f64,
+) -> impacting_cantilever::analysis::continuation::Branch {
+    use impacting_cantilever::analysis::continuation::{self, Family, Settings};
+    let base = Forced {
+        k_over_k1: k,
+        ..problems::figure4(n)
+    };
+    let fam = Family::forced(base, parameter);
+    let x = fam
+        .simulator(from)
+        .unwrap()
+        .run(&DVector::zeros(2 * n), 1000, &mut ())
+        .unwrap()
+        .state;
+    let s = Settings::new((from.min(to), from.max(to)));
+    continuation::continue_branch(&fam, &x, from, 1, (to - from).signum(), &s).unwrap()
+}
+
+/// The leading real negative multiplier's modulus of the period-1 orbit near `x` (shooting,
+/// not the bordered system the curve solves).
+fn flip_modulus(n: usize, k: f64, omega: f64, x: &[f64]) -> f64 {
+    use impacting_cantilever::analysis::{continuation::Family, shooting};
+    let base = Forced {
+        k_over_k1: k,
+        ..problems::figure4(n)
+    };
+    let sim = Family::forced(base, Parameter::Frequency)
+        .simulator(omega)
+        .unwrap();
+    let orbit = shooting::shoot(&sim, &DVector::from_row_slice(x), 1).unwrap();
+    orbit
+        .multipliers
+        .iter()
+        .filter(|z| z[1].abs() < 1e-9 && z[0] < 0.0)
+        .map(|z| z[0].abs())
+        .fold(0.0, f64::max)
+}
+
+/// The period-doubling curve of the one-mode model in (ω, k), started from the period
+/// doubling a one-parameter run in ω reports at k = 100k₁, is checked where it was not
+/// started: at k = 400k₁ a second one-parameter run in ω brackets its own period doubling,
+/// and the curve's ω there (interpolated in ln k) lies in that bracket; shooting 1e-5
+/// either side of it finds the leading negative multiplier on either side of −1.
+#[test]
+fn a_period_doubling_curve_passes_through_the_one_parameter_period_doublings() {
+    use impacting_cantilever::analysis::continuation::BifurcationKind;
+    let b100 = branch(1, 100.0, Parameter::Frequency, 2.0, 3.0);
+    let pd = b100
+        .bifurcations
+        .iter()
+        .find(|b| b.kind == BifurcationKind::PeriodDoubling)
+        .expect("a period doubling in ω at k = 100k₁");
+    let start = &b100.points[pd.index];
+    let family = Family2::forced(
+        problems::figure4(1),
+        Parameter::Frequency,
+        Parameter::StopStiffness,
+    )
+    .unwrap();
+    let settings = CurveSettings::new((1.0, 4.0), (20.0, 2000.0));
+    let curve = curves::trace_curve(
+        &family,
+        CurveKind::PeriodDoubling,
+        &DVector::from_vec(start.state.clone()),
+        (start.parameter, 100.0),
+        1,
+        &settings,
+        &Silent,
+    )
+    .unwrap();
+    assert_eq!(
+        curve.ends,
+        (
+            "left the parameter rectangle".to_string(),
+            "left the parameter rectangle".to_string()
+        )
+    );
+    for p in &curve.points {
+        // the multiplier at −1 to the eigensolver's accuracy on a polished orbit
+        assert!(p.test_residual <= 1e-9, "k = {}: {}", p.q, p.test_residual);
+    }
+    let at_100 = curve
+        .points
+        .iter()
+        .find(|p| (p.q - 100.0).abs() < 1e-12 * 100.0)
+        .unwrap();
+    assert!(pd.between.0 <= at_100.p && at_100.p <= pd.between.1);
+
+    let b400 = branch(1, 400.0, Parameter::Frequency, 2.0, 3.0);
+    let pd400 = b400
+        .bifurcations
+        .iter()
+        .find(|b| b.kind == BifurcationKind::PeriodDoubling)
+        .expect("a period doubling in ω at k = 400k₁");
+    let i = curve
+        .points
+        .windows(2)
+        .position(|w| (w[0].q - 400.0) * (w[1].q - 400.0) <= 0.0)
+        .expect("the curve crosses k = 400k₁");
+    let (a, b) = (&curve.points[i], &curve.points[i + 1]);
+    let s = (400f64.ln() - a.q.ln()) / (b.q.ln() - a.q.ln());
+    let omega = a.p + s * (b.p - a.p);
+    assert!(
+        pd400.between.0 <= omega && omega <= pd400.between.1,
+        "curve ω = {omega}, one-parameter bracket {:?}",
+        pd400.between
+    );
+    // linear interpolation between curve points ~0.05 apart in arclength is good to
+    // ~1e-4 in ω here (the curve's curvature); at 1e-3 either side the multiplier has
+    // moved by ~1e-2, far beyond that
+    let below = flip_modulus(1, 400.0, omega - 1e-3, &a.state);
+    let above = flip_modulus(1, 400.0, omega + 1e-3, &a.state);
+    assert!(
+        (below - 1.0) * (above - 1.0) < 0.0,
+        "|μ| = {below} at ω − 1e-3, {above} at ω + 1e-3"
+    );
+}
+
+/// The grazing curve of the three-mode model in (k, ω) through the grazing that a
+/// one-parameter run in k finds at ω = 2(β₁⁻)² (placed there by bisection on the number of
+/// contacts, to a bracket 1e-8 wide): the curve's point at ω = 2 (Newton on the signed
+/// distance of the extremum to the stop) lies in that bracket.
+#[test]
+fn a_grazing_curve_passes_through_the_one_parameter_grazing() {
+    use impacting_cantilever::analysis::continuation::BifurcationKind;
+    let b = branch(3, 100.0, Parameter::StopStiffness, 100.0, 140.0);
+    let g = b
+        .bifurcations
+        .iter()
+        .find(|b| b.kind == BifurcationKind::Grazing)
+        .expect("a grazing between k = 100k₁ and 140k₁");
+    let start = &b.points[g.index];
+    let family = Family2::forced(
+        problems::figure4(3),
+        Parameter::StopStiffness,
+        Parameter::Frequency,
+    )
+    .unwrap();
+    let settings = CurveSettings {
+        max_points: 40,
+        ..CurveSettings::new((10.0, 1000.0), (1.9, 2.1))
+    };
+    let curve = curves::trace_curve(
+        &family,
+        CurveKind::Grazing,
+        &DVector::from_vec(start.state.clone()),
+        (start.parameter, 2.0),
+        1,
+        &settings,
+        &Silent,
+    )
+    .unwrap();
+    let at_2 = curve
+        .points
+        .iter()
+        .find(|p| (p.q - 2.0).abs() < 1e-12 * 2.0)
+        .unwrap();
+    assert!(
+        g.between.0 <= at_2.p && at_2.p <= g.between.1,
+        "curve k = {}, bracket {:?}",
+        at_2.p,
+        g.between
+    );
+    assert!(curve.points.len() > 10);
+    for p in &curve.points {
+        assert!(p.test_residual <= 1e-9 && p.orbit_residual <= 1e-12);
+    }
+}
