@@ -241,3 +241,103 @@ fn a_grazing_curve_passes_through_the_one_parameter_grazing() {
         assert!(p.test_residual <= 1e-9 && p.orbit_residual <= 1e-12);
     }
 }
+
+/// The fold curve of the one-mode model with a soft stop (k = 0.5k₁, d₀ = 0.5) in (ω, k),
+/// started at the fold a one-parameter run in ω finds at k = 0.5k₁: located again at
+/// k = 2k₁ (Newton on the extended system from the nearest curve point), it is the turning
+/// point of a separate one-parameter run at k = 2k₁: beyond its points around the fold it
+/// reports, and within 1e-6 of the nearest. The curve also has a cusp (two fold curves meet) below k = 0.5k₁.
+#[test]
+fn a_fold_curve_passes_through_the_one_parameter_folds_and_has_a_cusp() {
+    use impacting_cantilever::analysis::continuation::BifurcationKind;
+    let soft = |k: f64| Forced {
+        modes: 1,
+        gap: 0.5,
+        k_over_k1: k,
+        ..problems::figure4(1)
+    };
+    let fold_at = |k: f64| {
+        use impacting_cantilever::analysis::continuation::{self, Family, Settings};
+        let fam = Family::forced(soft(k), Parameter::Frequency);
+        let x = fam
+            .simulator(2.0)
+            .unwrap()
+            .run(&DVector::zeros(2), 1000, &mut ())
+            .unwrap()
+            .state;
+        let s = Settings::new((0.9, 2.0));
+        let b = continuation::continue_branch(&fam, &x, 2.0, 1, -1.0, &s).unwrap();
+        let f = b
+            .bifurcations
+            .iter()
+            .find(|b| b.kind == BifurcationKind::Fold)
+            .expect("a fold")
+            .clone();
+        (b, f)
+    };
+    let (branch, fold) = fold_at(0.5);
+    let start = &branch.points[fold.index];
+    let family =
+        Family2::forced(soft(1.0), Parameter::Frequency, Parameter::StopStiffness).unwrap();
+    let curve = curves::trace_curve(
+        &family,
+        CurveKind::Fold,
+        &DVector::from_vec(start.state.clone()),
+        (start.parameter, 0.5),
+        1,
+        &CurveSettings::new((0.5, 2.0), (0.05, 5.0)),
+        &Silent,
+    )
+    .unwrap();
+    for p in &curve.points {
+        assert!(p.test_residual <= 1e-9, "k = {}: {}", p.q, p.test_residual);
+    }
+    let cusps: Vec<_> = curve
+        .codim_two
+        .iter()
+        .filter(|c| c.meets == curves::Meets::Cusp)
+        .collect();
+    assert_eq!(cusps.len(), 1, "{:?}", curve.codim_two);
+    assert!(cusps[0].q < 0.5);
+
+    let (branch2, fold2) = fold_at(2.0);
+    let near = curve
+        .points
+        .iter()
+        .min_by(|a, b| {
+            let d = |p: &curves::CurvePoint| {
+                (p.q / 2.0).ln().abs() + (p.p / fold2.parameter).ln().abs()
+            };
+            d(a).total_cmp(&d(b))
+        })
+        .unwrap();
+    let located = curves::locate_point(
+        &family,
+        CurveKind::Fold,
+        &DVector::from_vec(near.state.clone()),
+        (near.p, 2.0),
+        1,
+    )
+    .unwrap();
+    // the fold is the branch's extreme in ω: the located ω lies beyond every branch point
+    // around the bracket (not between them: a turning point is not interpolated), and
+    // within 1e-6 of the nearest
+    let around: Vec<f64> = branch2.points[fold2.index.saturating_sub(3)..fold2.index + 4]
+        .iter()
+        .map(|p| p.parameter)
+        .collect();
+    let (lo, hi) = around
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(a, b), &w| (a.min(w), b.max(w)));
+    let minimum = around[0] > fold2.parameter;
+    let beyond = if minimum {
+        lo - located.p
+    } else {
+        located.p - hi
+    };
+    assert!(
+        (0.0..1e-6).contains(&beyond),
+        "located ω = {}, branch around the fold {around:?}",
+        located.p
+    );
+}

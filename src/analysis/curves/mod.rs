@@ -25,6 +25,7 @@
 mod defining;
 
 use crate::analysis::continuation::{tangent, Parameter, Scaled, ShapeObserver};
+use crate::analysis::orbit::relative_residual;
 use crate::analysis::shooting;
 use crate::base::progress::Progress;
 use crate::engine::sim::Simulator;
@@ -175,6 +176,9 @@ pub enum Meets {
     NeimarkSacker,
     /// The number of contacts per period changes (fold and period-doubling curves).
     Grazing,
+    /// Another fold curve, at a cusp: the fold curve's direction in (p, q) reverses (its
+    /// tangent lies in the state alone there).
+    Cusp,
 }
 
 /// A codimension-two point between points `index` and `index + 1` of a curve.
@@ -436,30 +440,7 @@ pub fn trace_curve(
     progress: &dyn Progress,
 ) -> Result<Curve, Error> {
     validate(settings, p0, q0)?;
-    let sim0 = family.simulator(p0, q0)?;
-    let start = shooting::shoot(&sim0, x0, m)?;
-    if start.period_m != m {
-        return Err(Error::Unsupported(format!(
-            "shooting for period {m} at (p, q) = ({p0}, {q0}) converged to an orbit of \
-             period {}",
-            start.period_m
-        )));
-    }
-    let x = DVector::from_vec(start.state.clone());
-    let system = System {
-        family,
-        kind,
-        m,
-        sc: Scaled::new(&x, sim0.model().free_tip_amplitude()),
-    };
-    let (_, mono, _) = shooting::map_with_jacobian(&sim0, &x, m)?;
-    let (z0, lin0, borders) = locate(
-        &system,
-        &x,
-        p0,
-        q0,
-        initial_borders(kind, &system.sc, &mono)?,
-    )?;
+    let (system, z0, lin0, borders) = start(family, kind, x0, (p0, q0), m)?;
     let d = z0.len();
     let mut prev = DVector::zeros(d);
     prev[d - 1] = 1.0;
@@ -496,6 +477,73 @@ pub fn trace_curve(
         } else {
             (end_backward, end_forward)
         },
+    })
+}
+
+/// The extended system of `kind` and its first point, located at fixed q0 from the orbit
+/// near x0 at p0: (system, z0, its linearisation, borders).
+fn start<'f, 'a>(
+    family: &'f Family2<'a>,
+    kind: CurveKind,
+    x0: &DVector<f64>,
+    (p0, q0): (f64, f64),
+    m: u64,
+) -> Result<(System<'f, 'a>, DVector<f64>, Linear, Borders), Error> {
+    let sim0 = family.simulator(p0, q0)?;
+    // a state already on a period-m orbit (a branch point a one-parameter run reported) is
+    // taken as it is: shooting at fixed p is ill-conditioned next to a fold, where the
+    // extended system is not
+    let on_orbit = {
+        let px = sim0.run(x0, m, &mut ())?.state;
+        relative_residual(&px, x0) <= 1e-8
+    };
+    let x = if on_orbit {
+        x0.clone()
+    } else {
+        let start = shooting::shoot(&sim0, x0, m)?;
+        if start.period_m != m {
+            return Err(Error::Unsupported(format!(
+                "shooting for period {m} at (p, q) = ({p0}, {q0}) converged to an orbit of \
+                 period {}",
+                start.period_m
+            )));
+        }
+        DVector::from_vec(start.state)
+    };
+    let system = System {
+        family,
+        kind,
+        m,
+        sc: Scaled::new(&x, sim0.model().free_tip_amplitude()),
+    };
+    let (_, mono, _) = shooting::map_with_jacobian(&sim0, &x, m)?;
+    let borders = initial_borders(kind, &system.sc, &mono)?;
+    let (z0, lin0, borders) = locate(&system, &x, p0, q0, borders)?;
+    Ok((system, z0, lin0, borders))
+}
+
+/// The point of the `kind` curve at q = q0 nearest the period-m orbit near x0 at p0, found
+/// by Newton on (x, p) at fixed q and polished: one point of the curve, without tracing it
+/// (to check a curve where it was not started, or to place a point exactly).
+///
+/// # Errors
+/// As [`trace_curve`]'s start.
+pub fn locate_point(
+    family: &Family2,
+    kind: CurveKind,
+    x0: &DVector<f64>,
+    (p0, q0): (f64, f64),
+    m: u64,
+) -> Result<CurvePoint, Error> {
+    let (system, z0, _, _) = start(family, kind, x0, (p0, q0), m)?;
+    let settings = CurveSettings::new((p0, p0), (q0, q0));
+    let tracer = Tracer {
+        system: &system,
+        settings: &settings,
+    };
+    tracer.polish(&z0)?.ok_or_else(|| Error::NotConverged {
+        message: "the located point could not be polished".into(),
+        residual: None,
     })
 }
 
@@ -605,6 +653,22 @@ fn codim_two(kind: CurveKind, points: &[CurvePoint]) -> Vec<CodimTwo> {
         if kind != CurveKind::Grazing && a.impacts_n != b.impacts_n {
             push(Meets::Grazing, 0.5, -0.5);
         }
+    }
+    if kind == CurveKind::Fold {
+        // a cusp: two consecutive secants in (ln p, ln q) point against each other
+        let secant = |a: &CurvePoint, b: &CurvePoint| ((b.p / a.p).ln(), (b.q / a.q).ln());
+        for (i, w) in points.windows(3).enumerate() {
+            let (s1, s2) = (secant(&w[0], &w[1]), secant(&w[1], &w[2]));
+            if s1.0 * s2.0 + s1.1 * s2.1 < 0.0 {
+                out.push(CodimTwo {
+                    meets: Meets::Cusp,
+                    p: w[1].p,
+                    q: w[1].q,
+                    index: i + 1,
+                });
+            }
+        }
+        out.sort_by_key(|c| c.index);
     }
     out
 }
