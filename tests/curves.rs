@@ -341,3 +341,66 @@ fn a_fold_curve_passes_through_the_one_parameter_folds_and_has_a_cusp() {
         located.p
     );
 }
+
+/// `continue2` is `curve_from` serialised: its JSON carries the curve the library traces
+/// for the same inputs, its CSV one row per point, and bad input exits 2 naming the option.
+#[test]
+fn continue2_prints_the_librarys_curve_and_refuses_bad_input() {
+    use crate::common::cli::cantilever;
+    let base = [
+        "continue2",
+        "--modes",
+        "1",
+        "--zeta1",
+        "0.05",
+        "--omega",
+        "0.8",
+        "--gap",
+        "1",
+        "--kind",
+        "grazing",
+        "--parameter",
+        "gap",
+        "--second",
+        "omega",
+        "--range",
+        "0.01",
+        "10",
+        "--second-range",
+        "0.7",
+        "0.9",
+    ];
+    let (code, out, err) = cantilever(&[&base[..], &["--json"]].concat());
+    assert_eq!(code, 0, "{err}");
+    let doc: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let points = doc["curve"]["points"].as_array().unwrap();
+    assert!(points.len() > 5);
+    for p in points {
+        let (d0, omega) = (p["p"].as_f64().unwrap(), p["q"].as_f64().unwrap());
+        let exact = linear_amplitude(0.05, omega);
+        assert!((d0 - exact).abs() <= 1e-8 * exact, "{d0} against {exact}");
+    }
+    let (code, csv, _) = cantilever(&[&base[..], &["--csv"]].concat());
+    assert_eq!(code, 0);
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next(),
+        Some("gap,omega,contacts,orbit_residual,test_residual,spectral_radius")
+    );
+    assert_eq!(lines.count(), points.len());
+    for (extra, names) in [
+        (&["--max-step", "0.5"][..], "--max-step"),
+        (&["--max-points", "1"][..], "--max-points"),
+        (&["--range", "1", "2"][..], "--range"),
+        (&["--json", "--csv"][..], "--csv"),
+    ] {
+        let (code, _, err) = cantilever(&[&base[..], extra].concat());
+        assert_eq!(code, 2, "{extra:?}: {err}");
+        assert!(err.contains(names), "{extra:?}: {err}");
+    }
+    let mut same = base.to_vec();
+    same[14] = "gap";
+    let (code, _, err) = cantilever(&same);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--second"), "{err}");
+}

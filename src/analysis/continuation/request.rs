@@ -77,7 +77,7 @@ pub fn keyword(p: Parameter) -> &'static str {
 }
 
 /// The specification with the continued parameter at `p`.
-fn at(spec: &ModelSpec, parameter: Parameter, p: f64) -> ModelSpec {
+pub(crate) fn at(spec: &ModelSpec, parameter: Parameter, p: f64) -> ModelSpec {
     let mut s = spec.clone();
     match (&mut s.structure, &mut s.stop, parameter) {
         (_, Stop::Compliant { stop_stiffness }, Parameter::StopStiffness) => *stop_stiffness = p,

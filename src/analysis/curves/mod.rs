@@ -23,6 +23,7 @@
 //! interpolation in arclength of its test quantity and lies between its two points.
 
 mod defining;
+pub mod request;
 
 use crate::analysis::continuation::{tangent, Parameter, Scaled, ShapeObserver};
 use crate::analysis::orbit::relative_residual;

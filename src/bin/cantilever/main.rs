@@ -9,6 +9,7 @@
 
 mod atlas_cmd;
 mod cite;
+mod continue2_cmd;
 mod continue_cmd;
 mod diff_cmd;
 mod flags;
@@ -186,6 +187,25 @@ enum Command {
         /// Print JSON.
         #[arg(long)]
         json: bool,
+    },
+    /// A curve of folds, period doublings or grazings in two parameters (pseudo-arclength
+    /// on the shooting problem closed by the point's test function), with the points where
+    /// it meets other such curves. The start orbit is found as by `orbit` at the model
+    /// options' values; the curve's point is found from it at the second parameter's value
+    /// and the curve traced both ways within --range × --second-range.
+    ///
+    /// Output fields (--json): modes, start, curve: kind, period_m, parameters, points (p,
+    /// q, state, impacts_n, multipliers [re, im], orbit_residual, test_residual: |μ ∓ 1| or
+    /// |d_ext − d₀|/A_free), codim_two (meets, p, q, index), ends. --csv prints the points.
+    Continue2 {
+        #[command(flatten)]
+        args: continue2_cmd::Continue2Args,
+        /// Print JSON.
+        #[arg(long, conflicts_with = "csv")]
+        json: bool,
+        /// Print the points as CSV.
+        #[arg(long)]
+        csv: bool,
     },
     /// Compute the multi-tap atlas (stable periodic orbits (m, n) over k and ω, with N matched
     /// to each k by stiffness matching unless --modes fixes it), or
@@ -412,6 +432,7 @@ impl Command {
             Command::ModesNeeded { .. } => "modes-needed",
             Command::Orbit { .. } => "orbit",
             Command::Continue { .. } => "continue",
+            Command::Continue2 { .. } => "continue2",
             Command::Atlas { .. } => "atlas",
             Command::AtlasMerge { .. } => "atlas-merge",
             Command::Diff { .. } => "diff",
@@ -576,6 +597,18 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 outln!("{}", json_text("continue", doc));
             } else {
                 emit(&continue_cmd::to_text(&report));
+            }
+            Ok(())
+        }
+        Command::Continue2 { args, json, csv } => {
+            let report = continue2_cmd::run(&args)?;
+            if json {
+                let doc = serde_json::to_value(&report).unwrap_or_default();
+                outln!("{}", json_text("continue2", doc));
+            } else if csv {
+                emit(&continue2_cmd::to_csv(&report, &args));
+            } else {
+                emit(&continue2_cmd::to_text(&report));
             }
             Ok(())
         }
