@@ -30,6 +30,7 @@ mod galerkin;
 mod harmonics;
 mod layers;
 mod layout;
+mod lyapunov;
 mod observation;
 mod peers;
 mod properties;

@@ -8,6 +8,7 @@ pub mod energetic;
 pub mod find_orbit;
 pub mod harmonics;
 pub mod impact_section;
+pub mod lyapunov;
 pub mod orbit;
 pub mod shooting;
 pub mod simulate;
