@@ -1,4 +1,4 @@
-"""The computations: ``simulate``, ``find_orbit``, ``continue_branch``,
+"""The computations: ``simulate``, ``find_orbit``, ``continue_branch``, ``continue_curve``,
 ``energetic_restitution`` and ``modes_needed``. Each is one call of the Rust library, run
 with the interpreter released (other Python threads go on); a progress callback
 ``progress(what, done, total)`` is called about ten times a second where given (``total``
@@ -23,6 +23,7 @@ from .errors import ParameterError
 from ._models import Model
 from ._results import (
     Continuation,
+    Curve,
     Dense,
     EnergeticRestitution,
     Events,
@@ -31,6 +32,7 @@ from ._results import (
     Simulation,
     Study,
     _branch,
+    _curve,
 )
 
 #: ``progress(what, done, total)``.
@@ -222,6 +224,69 @@ def continue_branch(
         branches=[_branch(b) for b in d["branches"]],
         document=d,
     )
+
+
+def continue_curve(
+    model: Model,
+    kind: Literal["fold", "period_doubling", "grazing"],
+    parameter: Literal["stop_stiffness", "omega", "gap"],
+    second: Literal["stop_stiffness", "omega", "gap"],
+    range: tuple[float, float],
+    second_range: tuple[float, float],
+    *,
+    max_step: float = 0.05,
+    max_points: int = 400,
+    start: Optional[ArrayLike] = None,
+    seed: Optional[int] = None,
+    transient: int = 1000,
+    window: int = 65,
+    period: Optional[int] = None,
+    progress: Progress = None,
+) -> Curve:
+    """The curve of folds (a multiplier at +1), period doublings (at −1) or grazings (the
+    tip's extremum nearest the stop touches it) of the model's orbit, in two of k/k₁
+    (``"stop_stiffness"``), ω/(β₁⁻)² (``"omega"``) and d₀ (``"gap"``): pseudo-arclength on
+    the shooting problem closed by the point's test function, with the points where it
+    meets other curves — ``cantilever continue2``, to the bit.
+
+    Args:
+        model: a compliant cantilever model; its values of the two parameters are the start.
+        kind: what the curve follows.
+        parameter: p, solved for at the start; ``second``: q, held while the first point is
+            found.
+        range, second_range: the rectangle the curve is traced in, (from, to) with
+            0 < from < to, containing the start's values.
+        max_step: largest arclength step (1e-4 to 0.2); max_points: each way (2 to 20 000).
+        start, seed, transient, window, period: the start orbit, as in :func:`find_orbit`.
+        progress: ``progress("curve: orbits", models built, 0)``.
+
+    Raises:
+        NotConvergedError: no point of the curve near the start orbit. UnsupportedError: the
+            rigid-impact model or the oscillator. ParameterError: bad input.
+    """
+    if not (isinstance(range, tuple) and len(range) == 2):
+        raise ParameterError(f"invalid range: got {range!r}; allowed: a pair (from, to)")
+    if not (isinstance(second_range, tuple) and len(second_range) == 2):
+        raise ParameterError(
+            f"invalid second_range: got {second_range!r}; allowed: a pair (from, to)"
+        )
+    d = _core.continue_curve(
+        model,
+        kind,
+        parameter,
+        second,
+        (float(range[0]), float(range[1])),
+        (float(second_range[0]), float(second_range[1])),
+        max_step,
+        max_points,
+        _state(start),
+        seed,
+        transient,
+        window,
+        period,
+        progress,
+    )
+    return _curve(d)
 
 
 def _coefficient(c: Any) -> Optional[float]:

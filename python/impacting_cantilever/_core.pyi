@@ -133,6 +133,22 @@ def continue_branch(
     period: Optional[int],
     progress: _Progress,
 ) -> dict[str, Any]: ...
+def continue_curve(
+    model: Model,
+    kind: str,
+    parameter: str,
+    second: str,
+    range: tuple[float, float],
+    second_range: tuple[float, float],
+    max_step: float,
+    max_points: int,
+    start: Optional[NDArray[np.float64]],
+    seed: Optional[int],
+    transient: int,
+    window: int,
+    period: Optional[int],
+    progress: _Progress,
+) -> dict[str, Any]: ...
 def energetic_restitution(
     model: Model,
     start: Optional[NDArray[np.float64]],

@@ -338,6 +338,91 @@ class Continuation(_Result):
 
 
 @dataclass(frozen=True, repr=False, eq=False)
+class CodimTwo(_Result):
+    """A point where a curve meets another curve (between two of its points)."""
+
+    #: What it meets: "fold", "period_doubling", "neimark_sacker", "grazing" or "cusp".
+    meets: str
+    #: Where, in the curve's two parameters (interpolated).
+    p: float
+    q: float
+    #: The first of the two points it lies between.
+    index: int
+
+
+@dataclass(frozen=True, repr=False, eq=False)
+class Curve(_Result):
+    """A curve of folds, period doublings or grazings of period-m orbits in two parameters
+    (p, q), one entry per point in arclength order — ``cantilever continue2``, to the bit."""
+
+    #: "fold", "period_doubling" or "grazing".
+    kind: str
+    period_m: int
+    modes: int
+    #: The symbols of p and q, e.g. ("k/k₁", "ω/(β₁⁻)²").
+    parameters: tuple[str, str]
+    #: The start orbit's (p, q) as the model gives them.
+    start: tuple[float, float]
+    p: NDArray[np.float64]
+    q: NDArray[np.float64]
+    #: The orbit's state [η; η̇] at the start of a forcing period, shape (points, 2N).
+    state: NDArray[np.float64]
+    #: n, contacts per orbit period.
+    impacts_n: NDArray[np.int64]
+    #: Floquet multipliers, largest modulus first, shape (points, 2N).
+    multipliers: NDArray[np.complex128]
+    #: ‖P^m(x) − x‖∞/‖x‖∞ of each polished orbit.
+    orbit_residual: NDArray[np.float64]
+    #: How far each is from the condition: |μ ∓ 1| of the nearest multiplier, or
+    #: |d_ext − d₀|/A_free.
+    test_residual: NDArray[np.float64]
+    codim_two: list[CodimTwo]
+    #: Why each end ends (the first point's, the last point's).
+    ends: tuple[str, str]
+    #: The whole result as ``cantilever continue2 --json`` prints it (without its header).
+    document: dict[str, Any] = field(compare=False)
+
+    def __len__(self) -> int:
+        return len(self.p)
+
+    def __repr__(self) -> str:
+        meets = ", ".join(f"{c.meets} at ({c.p:.6g}, {c.q:.6g})" for c in self.codim_two)
+        return (
+            f"Curve({self.kind}, period {self.period_m}, N = {self.modes}, {len(self)} points in "
+            f"{self.parameters}, meets: [{meets}], ends: {self.ends})"
+        )
+
+
+def _curve(d: dict[str, Any]) -> Curve:
+    c = d["curve"]
+    pts = c["points"]
+    n = 2 * d["modes"]
+    mult = np.array(
+        [[complex(re, im) for re, im in p["multipliers"]] for p in pts], dtype=np.complex128
+    ).reshape(len(pts), n)
+    return Curve(
+        kind=c["kind"],
+        period_m=c["period_m"],
+        modes=d["modes"],
+        parameters=tuple(c["parameters"]),
+        start=tuple(d["start"]),
+        p=np.array([p["p"] for p in pts], dtype=np.float64),
+        q=np.array([p["q"] for p in pts], dtype=np.float64),
+        state=np.array([p["state"] for p in pts], dtype=np.float64).reshape(len(pts), n),
+        impacts_n=np.array([p["impacts_n"] for p in pts], dtype=np.int64),
+        multipliers=mult,
+        orbit_residual=np.array([p["orbit_residual"] for p in pts], dtype=np.float64),
+        test_residual=np.array([p["test_residual"] for p in pts], dtype=np.float64),
+        codim_two=[
+            CodimTwo(meets=x["meets"], p=x["p"], q=x["q"], index=x["index"])
+            for x in c["codim_two"]
+        ],
+        ends=tuple(c["ends"]),
+        document=d,
+    )
+
+
+@dataclass(frozen=True, repr=False, eq=False)
 class EnergeticRestitution(_Result):
     """r_E (eq 39) of the orbit a run settles on, with each contact's r̃_E (eq 38)."""
 

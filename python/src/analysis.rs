@@ -1,4 +1,5 @@
 //! What is computed from runs: periodic orbits (`find_orbit`), branches (`continue_branch`),
+//! curves of bifurcations in two parameters (`continue_curve`),
 //! the energetic coefficient of restitution r_E (eq 39) and the modes a stop needs — each
 //! one call of the library (the same call the command line makes), run with the
 //! interpreter released.
@@ -8,6 +9,8 @@ use crate::model::{start_of, state, Model};
 use crate::{bad, py_error, Res};
 use impacting_cantilever::analysis::continuation::{continue_from, ContinueOptions, Parameter};
 use impacting_cantilever::analysis::convergence;
+use impacting_cantilever::analysis::curves::request::{curve_from, CurveOptions};
+use impacting_cantilever::analysis::curves::CurveKind;
 use impacting_cantilever::analysis::energetic;
 use impacting_cantilever::analysis::find_orbit::{self as library, FoundOrbit, OrbitOptions};
 use impacting_cantilever::analysis::orbit::{TRANSIENT, WINDOW};
@@ -132,6 +135,71 @@ pub fn continue_branch<'py>(
     let spec = model.built.spec();
     let doc = Reporter::new(progress).run(py, |r| {
         let c = continue_from(spec, &start, &orbit, &o, r)?;
+        serde_json::to_value(&c).map_err(|e| Error::Unsupported(e.to_string()))
+    })?;
+    json_to_py(py, &doc)
+}
+
+/// A parameter by its keyword.
+fn parameter_named(name: &str, what: &str) -> Res<Parameter> {
+    match name {
+        "stop_stiffness" => Ok(Parameter::StopStiffness),
+        "omega" => Ok(Parameter::Frequency),
+        "gap" => Ok(Parameter::Gap),
+        other => Err(bad(what, other, "stop_stiffness, omega or gap")),
+    }
+}
+
+/// The curve of folds, period doublings or grazings in two parameters through the model's
+/// orbit (see the Python layer's `continue_curve`).
+#[pyfunction]
+#[pyo3(signature = (model, kind, parameter, second, range, second_range, max_step, max_points, start, seed, transient, window, period, progress))]
+#[allow(clippy::too_many_arguments)]
+pub fn continue_curve<'py>(
+    py: Python<'py>,
+    model: &Model,
+    kind: &str,
+    parameter: &str,
+    second: &str,
+    range: (f64, f64),
+    second_range: (f64, f64),
+    max_step: f64,
+    max_points: i64,
+    start: Option<PyReadonlyArray1<'py, f64>>,
+    seed: Option<u64>,
+    transient: i64,
+    window: i64,
+    period: Option<i64>,
+    progress: Option<Py<PyAny>>,
+) -> Res<Bound<'py, PyAny>> {
+    let kind = match kind {
+        "fold" => CurveKind::Fold,
+        "period_doubling" => CurveKind::PeriodDoubling,
+        "grazing" => CurveKind::Grazing,
+        other => return Err(bad("kind", other, "fold, period_doubling or grazing")),
+    };
+    let orbit = options(
+        transient,
+        window,
+        period,
+        OrbitOptions::DEFAULTS.period_tolerance,
+        OrbitOptions::DEFAULTS.max_iterations as i64,
+        false,
+    )?;
+    let start = start_of(start, seed)?;
+    let o = CurveOptions {
+        kind,
+        parameter: parameter_named(parameter, "parameter")?,
+        second: parameter_named(second, "second")?,
+        range,
+        second_range,
+        max_step,
+        max_points: u64::try_from(max_points)
+            .map_err(|_| bad("max_points", max_points, "2 to 20000"))?,
+    };
+    let spec = model.built.spec();
+    let doc = Reporter::new(progress).run(py, |r| {
+        let c = curve_from(spec, &start, &orbit, &o, r)?;
         serde_json::to_value(&c).map_err(|e| Error::Unsupported(e.to_string()))
     })?;
     json_to_py(py, &doc)

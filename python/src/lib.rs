@@ -91,6 +91,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::find_orbit, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::continue_branch, m)?)?;
+    m.add_function(wrap_pyfunction!(analysis::continue_curve, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::energetic_restitution, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::modes_needed, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::time_rust, m)?)?;

@@ -181,6 +181,29 @@ def test_continuation_in_omega_one_way(cli: Cli) -> None:
     assert len(c.branches) == 1 and c.branches[0].bifurcations  # folds and doublings
 
 
+def test_curve_of_grazings_in_k_and_omega(cli: Cli) -> None:
+    m = ic.replace(ic.problems.figure4(3), stop_stiffness=126.0)
+    c = ic.continue_curve(
+        m, "grazing", "stop_stiffness", "omega", (10.0, 1000.0), (1.9, 2.1)
+    )
+    doc = cli.json(
+        "continue2", "--modes", "3", "--stop-stiffness", "126", "--zeta1", "0.01",
+        "--omega", "2", "--periods", "1000", "--record", "65", "--kind", "grazing",
+        "--parameter", "stop-stiffness", "--second", "omega", "--range", "10", "1000",
+        "--second-range", "1.9", "2.1",
+    )  # fmt: skip
+    assert c.document == doc
+    assert same_bits(c.p, [p["p"] for p in doc["curve"]["points"]])
+    assert len(c) > 10 and c.kind == "grazing" and c.parameters == ("k/k₁", "ω/(β₁⁻)²")
+    assert c.test_residual.max() <= 1e-9
+    with pytest.raises(ic.errors.ParameterError, match="second"):
+        ic.continue_curve(m, "grazing", "omega", "omega", (1.0, 3.0), (1.0, 3.0))
+    with pytest.raises(ic.errors.ParameterError, match="kind"):
+        ic.continue_curve(m, "cusp", "omega", "gap", (1.0, 3.0), (1.0, 3.0))  # type: ignore[arg-type]
+    with pytest.raises(ic.errors.ParameterError, match="range"):
+        ic.continue_curve(m, "fold", "omega", "stop_stiffness", (3.0, 1.0), (10.0, 300.0))
+
+
 def test_modes_needed(cli: Cli) -> None:
     m = ic.modes_needed(5000, 1e-4)
     doc = cli.json("modes-needed", "--stop-stiffness", "5000", "--tolerance", "1e-4")

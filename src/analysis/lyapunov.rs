@@ -68,19 +68,32 @@ const T975: [f64; 29] = [
     2.052, 2.048, 2.045,
 ];
 
-/// One period of the QR iteration: the next state, Q and the logarithms of |R_jj|.
+/// One period of the QR iteration.
+struct Step {
+    /// The state a period later.
+    next: DVector<f64>,
+    /// The new orthonormal columns.
+    q: DMatrix<f64>,
+    /// ln |R_jj|.
+    logs: Vec<f64>,
+}
+
 fn step<M: PeriodMap + ?Sized>(
     model: &M,
     x: &DVector<f64>,
     q: &DMatrix<f64>,
-) -> Result<(DVector<f64>, DMatrix<f64>, Vec<f64>), Error> {
+) -> Result<Step, Error> {
     let (next, jacobian, _) = model.map_with_jacobian(x, 1)?;
     let qr = (jacobian * q).qr();
     let (q_new, r) = (qr.q(), qr.r());
     // the sign of R_jj is folded into Q's column, so Q stays continuous from period to
     // period; |R_jj| = 0 (a direction contracted to round-off) gives −∞, kept as such
     let logs = (0..r.nrows()).map(|j| r[(j, j)].abs().ln()).collect();
-    Ok((next, q_new, logs))
+    Ok(Step {
+        next,
+        q: q_new,
+        logs,
+    })
 }
 
 /// The `options.exponents` leading Lyapunov exponents of the trajectory of `model` from
@@ -132,11 +145,11 @@ pub fn lyapunov<M: PeriodMap + ?Sized>(
             if progress.cancelled() {
                 return Err(Error::Interrupted);
             }
-            let (next, q_new, logs) = step(model, &x, &q)?;
-            for (a, b) in sums.iter_mut().zip(&logs) {
+            let s = step(model, &x, &q)?;
+            for (a, b) in sums.iter_mut().zip(&s.logs) {
                 *a += b;
             }
-            (x, q) = (next, q_new);
+            (x, q) = (s.next, s.q);
             task.advance(1);
         }
         if s > 0 {
