@@ -404,3 +404,114 @@ fn continue2_prints_the_librarys_curve_and_refuses_bad_input() {
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("--second"), "{err}");
 }
+
+/// The rigid impact oscillator's period-doubling curve in (ω, r), traced on the exact map
+/// with its saltation matrices, against the closed form of its (1,1) orbit
+/// (`tests/common/impact.rs`: free flight in closed form between impacts at phase τ with
+/// velocity v, and the monodromy Φ(T)S): at every point of the curve the closed-form
+/// monodromy has a multiplier at −1, 1 + tr M + det M = 0, to 1e-8 (the corrector's 1e-11
+/// and the polish, with |∂(tr M)/∂ω| of order 1; the closed form itself is exact to
+/// round-off).
+#[test]
+fn the_rigid_oscillators_period_doubling_curve_is_the_closed_forms() {
+    use crate::common::impact::{ClosedForm, C, D, F, K};
+    use impacting_cantilever::engine::map::PeriodMap;
+    use impacting_cantilever::engine::rigid::RigidImpact;
+    use impacting_cantilever::model::galerkin::Oscillator;
+    let family = Family2::of_maps(("ω", "r"), |omega, r| {
+        let model = RigidImpact::oscillator(
+            &Oscillator {
+                stiffness: K,
+                damping: C,
+                forcing: F,
+                omega,
+                tip_gain: 1.0,
+                gap: D,
+                stop_stiffness: 0.0,
+            },
+            r,
+        )?;
+        Ok(Box::new(model) as Box<dyn PeriodMap + Send + Sync>)
+    });
+    // started next to the doubling: the closed form's at r = 0.8 by bisection in ω
+    let crossing = |omega: f64| {
+        let c = ClosedForm { omega, r: 0.8 };
+        let (tau, v) = c.orbits()[0];
+        let m = c.monodromy(tau, v);
+        1.0 + m.trace() + m.determinant()
+    };
+    let (mut a, mut b) = (2.6, 2.7);
+    for _ in 0..40 {
+        let mid = 0.5 * (a + b);
+        if crossing(a) * crossing(mid) <= 0.0 {
+            b = mid;
+        } else {
+            a = mid;
+        }
+    }
+    let omega0 = 0.5 * (a + b) - 0.01;
+    let start = ClosedForm {
+        omega: omega0,
+        r: 0.8,
+    };
+    let (tau, v) = start.orbits()[0];
+    let settings = CurveSettings {
+        max_points: 40,
+        ..CurveSettings::new((2.0, 4.0), (0.5, 0.95))
+    };
+    let curve = curves::trace_curve(
+        &family,
+        CurveKind::PeriodDoubling,
+        &start.state(tau, v),
+        (omega0, 0.8),
+        1,
+        &settings,
+        &Silent,
+    )
+    .unwrap();
+    assert!(
+        curve.points.len() > 20,
+        "{} points, {:?}",
+        curve.points.len(),
+        curve.ends
+    );
+    let (lo, hi) = curve
+        .points
+        .iter()
+        .fold((1.0f64, 0.0f64), |(a, b), p| (a.min(p.q), b.max(p.q)));
+    assert!(lo < 0.7 && hi > 0.9, "r covered only {lo}…{hi}");
+    for p in &curve.points {
+        let exact = ClosedForm { omega: p.p, r: p.q };
+        let state = DVector::from_vec(p.state.clone());
+        let (tau, v) = exact
+            .orbits()
+            .into_iter()
+            .min_by(|a, b| {
+                let d = |o: &(f64, f64)| (exact.state(o.0, o.1) - &state).norm();
+                d(a).total_cmp(&d(b))
+            })
+            .expect("an admissible (1,1) orbit at the curve's point");
+        assert!((exact.state(tau, v) - &state).amax() <= 1e-9 * state.amax());
+        let m = exact.monodromy(tau, v);
+        let g = 1.0 + m.trace() + m.determinant();
+        assert!(
+            g.abs() <= 1e-8,
+            "(ω, r) = ({}, {}): 1 + tr M + det M = {g:e}",
+            p.p,
+            p.q
+        );
+        assert_eq!(p.impacts_n, 1);
+    }
+    // grazing curves read the compliant tip: refused for this family
+    let e = curves::trace_curve(
+        &family,
+        CurveKind::Grazing,
+        &start.state(tau, v),
+        (omega0, 0.8),
+        1,
+        &settings,
+        &Silent,
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("compliant"), "{e}");
+}

@@ -24,12 +24,11 @@
 //!
 //! Everything is in the scaled coordinates ξ of [`crate::analysis::continuation`].
 
-use super::{CurveKind, Family2};
+use super::{CurveKind, Family2, Member};
 use crate::analysis::continuation::Scaled;
 use crate::analysis::continuation::ShapeObserver;
 use crate::analysis::orbit::relative_residual;
 use crate::analysis::shooting::map_with_jacobian;
-use crate::engine::sim::Simulator;
 use crate::error::Error;
 use nalgebra::{DMatrix, DVector};
 
@@ -138,7 +137,8 @@ fn bordered(a: &DMatrix<f64>, borders: &Borders) -> Option<(DVector<f64>, f64, D
 }
 
 /// The grazing test function at x: (d_ext − d₀)/A_free of the extremum nearest the stop.
-fn grazing_test(sim: &Simulator, x: &DVector<f64>, m: u64) -> Result<f64, Error> {
+fn grazing_test(member: &Member, x: &DVector<f64>, m: u64) -> Result<f64, Error> {
+    let sim = member.simulator()?;
     let mut obs = ShapeObserver::new(sim);
     sim.run(x, m, &mut obs)?;
     let scale = sim.model().free_tip_amplitude().0;
@@ -177,11 +177,12 @@ impl System<'_, '_> {
         let n = z.len() - 2;
         let (u, v) = (z[n], z[n + 1]);
         let x = self.state(z);
-        let sim = self.family.simulator(u.exp(), v.exp())?;
-        let (px, mono, _) = map_with_jacobian(&sim, &x, self.m)?;
+        let member = self.family.member(u.exp(), v.exp())?;
+        let sim = member.map();
+        let (px, mono, _) = map_with_jacobian(sim, &x, self.m)?;
         let shifted = [
-            self.family.simulator((u + H).exp(), v.exp())?,
-            self.family.simulator(u.exp(), (v + H).exp())?,
+            self.family.member((u + H).exp(), v.exp())?,
+            self.family.member(u.exp(), (v + H).exp())?,
         ];
         let s_scale = &self.sc.scale;
         let mut jacobian = DMatrix::zeros(n + 1, n + 2);
@@ -201,12 +202,12 @@ impl System<'_, '_> {
                 })?;
                 f[n] = s;
                 // ∂s/∂ξ = −ψᵀ S⁻¹ D²P[Sw, ·] S, from one monodromy at x + h·Sw
-                let (_, mono_w, _) = map_with_jacobian(&sim, &(&x + self.sc.to_x(&w) * H), self.m)?;
+                let (_, mono_w, _) = map_with_jacobian(sim, &(&x + self.sc.to_x(&w) * H), self.m)?;
                 let d2 = scaled(&self.sc, &((mono_w - &mono) / H));
                 let row = -(psi.transpose() * d2);
                 jacobian.view_mut((n, 0), (1, n)).copy_from(&row);
                 for (col, sim_h) in shifted.iter().enumerate() {
-                    let (px_h, mono_h, _) = map_with_jacobian(sim_h, &x, self.m)?;
+                    let (px_h, mono_h, _) = map_with_jacobian(sim_h.map(), &x, self.m)?;
                     let dg = (&px_h - &px).component_div(s_scale) / H;
                     jacobian.view_mut((0, n + col), (n, 1)).copy_from(&dg);
                     let da = scaled(&self.sc, &((mono_h - &mono) / H));
@@ -215,15 +216,15 @@ impl System<'_, '_> {
                 null = Some((w, psi));
             }
             CurveKind::Grazing => {
-                let s = grazing_test(&sim, &x, self.m)?;
+                let s = grazing_test(&member, &x, self.m)?;
                 f[n] = s;
                 for j in 0..n {
                     let mut xj = x.clone();
                     xj[j] += H * s_scale[j];
-                    jacobian[(n, j)] = (grazing_test(&sim, &xj, self.m)? - s) / H;
+                    jacobian[(n, j)] = (grazing_test(&member, &xj, self.m)? - s) / H;
                 }
                 for (col, sim_h) in shifted.iter().enumerate() {
-                    let px_h = sim_h.run(&x, self.m, &mut ())?.state;
+                    let px_h = sim_h.map().advance(&x, 0, self.m, false)?.state;
                     let dg = (&px_h - &px).component_div(s_scale) / H;
                     jacobian.view_mut((0, n + col), (n, 1)).copy_from(&dg);
                     jacobian[(n, n + col)] = (grazing_test(sim_h, &x, self.m)? - s) / H;

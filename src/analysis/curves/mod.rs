@@ -1,10 +1,13 @@
-//! Two-parameter continuation of codimension-one points of periodic orbits of the compliant
-//! model (beyond the paper): the curves of folds, period doublings and grazings in a plane
-//! of two parameters — (k, ω) or (ω, d₀) — that bound the regions of the atlas.
+//! Two-parameter continuation of codimension-one points of periodic orbits (beyond the
+//! paper): the curves of folds, period doublings and grazings in a plane of two parameters —
+//! (k, ω) or (ω, d₀) of the compliant model — that bound the regions of the atlas. Folds and
+//! period doublings are traced for any model with an exact period-map Jacobian as well (the
+//! rigid-impact model with its saltation matrices, [`Family2::of_maps`]); grazings read the
+//! compliant model's tip.
 //!
 //! **The extended system.** A point of a curve is z = (ξ, u, v): the orbit's scaled state
 //! at the start of a forcing period and u = ln p, v = ln q. It solves the n equations of the
-//! shooting problem G = P^m(x) − x = 0 and one test function s = 0 ([`defining`]: bordered
+//! shooting problem G = P^m(x) − x = 0 and one test function s = 0 (`defining`: bordered
 //! determinants of M ∓ I for folds and period doublings; the signed distance of the
 //! extremum nearest the stop for grazings). Those are n + 1 equations in n + 2 unknowns: a
 //! curve, traced by pseudo-arclength (Keller) exactly as one-parameter branches are
@@ -24,18 +27,17 @@
 
 mod codim_two;
 mod defining;
+mod family;
 pub mod request;
 
 pub use codim_two::{CodimTwo, Meets};
+pub use family::{Family2, Member};
 
-use crate::analysis::continuation::{tangent, Parameter, Scaled, ShapeObserver};
+use crate::analysis::continuation::{tangent, Scaled, ShapeObserver};
 use crate::analysis::orbit::relative_residual;
 use crate::analysis::shooting;
 use crate::base::progress::Progress;
-use crate::engine::sim::Simulator;
 use crate::error::{Error, ParameterError};
-use crate::model::galerkin::GalerkinModel;
-use crate::model::problems::Forced;
 use defining::{initial_borders, Borders, Linear, System};
 use nalgebra::{DMatrix, DVector};
 use serde::Serialize;
@@ -60,60 +62,6 @@ impl std::fmt::Display for CurveKind {
             CurveKind::PeriodDoubling => "period doubling",
             CurveKind::Grazing => "grazing",
         })
-    }
-}
-
-/// A two-parameter family of models (p, q) ↦ model(p, q).
-pub struct Family2<'a> {
-    /// Which parameters p and q are.
-    pub parameters: (Parameter, Parameter),
-    build: Box<dyn Fn(f64, f64) -> Result<GalerkinModel, Error> + Send + Sync + 'a>,
-}
-
-impl<'a> Family2<'a> {
-    /// A family from any model builder.
-    pub fn new(
-        parameters: (Parameter, Parameter),
-        build: impl Fn(f64, f64) -> Result<GalerkinModel, Error> + Send + Sync + 'a,
-    ) -> Self {
-        Self {
-            parameters,
-            build: Box::new(build),
-        }
-    }
-
-    /// The paper's forced model with two of k/k₁, ω/(β₁⁻)², d₀ as the parameters.
-    ///
-    /// # Errors
-    /// [`Error::Parameter`] when p and q are the same parameter.
-    pub fn forced(base: Forced, p: Parameter, q: Parameter) -> Result<Family2<'static>, Error> {
-        if p == q {
-            return Err(ParameterError::new(
-                "second parameter",
-                q.symbol(),
-                "a parameter other than the first",
-            )
-            .into());
-        }
-        let set = |f: &mut Forced, which: Parameter, value: f64| match which {
-            Parameter::StopStiffness => f.k_over_k1 = value,
-            Parameter::Frequency => f.omega_over_w1 = value,
-            Parameter::Gap => f.gap = value,
-        };
-        Ok(Family2::new((p, q), move |a, b| {
-            let mut f = base;
-            set(&mut f, p, a);
-            set(&mut f, q, b);
-            Ok(f.model()?)
-        }))
-    }
-
-    /// The simulator at (p, q).
-    ///
-    /// # Errors
-    /// The builder's error; [`Error::Flow`] when a region's flow cannot be built.
-    pub fn simulator(&self, p: f64, q: f64) -> Result<Simulator, Error> {
-        Ok(Simulator::new((self.build)(p, q)?)?)
     }
 }
 
@@ -253,13 +201,7 @@ impl Tracer<'_, '_, '_> {
                 Ok(l) => l,
                 // a step out of the model's range, into a broken run or a singular test
                 // system: not converged, a shorter step is tried
-                Err(
-                    Error::Parameter(_)
-                    | Error::Invariant(_)
-                    | Error::Flow(_)
-                    | Error::Chatter(_)
-                    | Error::NotConverged { .. },
-                ) => return Ok(None),
+                Err(e) if recoverable(&e) => return Ok(None),
                 Err(e) => return Err(e),
             };
             let arc = t.dot(&(&z - z_pred));
@@ -292,15 +234,13 @@ impl Tracer<'_, '_, '_> {
         let n = self.n(z);
         let (p, q) = (z[n].exp(), z[n + 1].exp());
         let sys = self.system;
-        let sim = sys.family.simulator(p, q)?;
+        let member = sys.family.member(p, q)?;
         let x = sys.state(z);
-        let Ok(orbit) = shooting::shoot_at_period(&sim, &x, sys.m, shooting::MAX_ITERATIONS) else {
+        let Ok(orbit) =
+            shooting::shoot_at_period(member.map(), &x, sys.m, shooting::MAX_ITERATIONS)
+        else {
             return Ok(None);
         };
-        let xs = DVector::from_vec(orbit.state.clone());
-        let mut obs = ShapeObserver::new(&sim);
-        sim.run(&xs, sys.m, &mut obs)?;
-        let shape = obs.finish();
         let distance = |target: f64| {
             orbit
                 .multipliers
@@ -312,7 +252,12 @@ impl Tracer<'_, '_, '_> {
             CurveKind::Fold => distance(1.0),
             CurveKind::PeriodDoubling => distance(-1.0),
             CurveKind::Grazing => {
-                shape.nearest_extremum.map_or(f64::INFINITY, f64::abs)
+                let sim = member.simulator()?;
+                let mut obs = ShapeObserver::new(sim);
+                sim.run(&DVector::from_vec(orbit.state.clone()), sys.m, &mut obs)?;
+                obs.finish()
+                    .nearest_extremum
+                    .map_or(f64::INFINITY, f64::abs)
                     / sim.model().free_tip_amplitude().0
             }
         };
@@ -320,7 +265,7 @@ impl Tracer<'_, '_, '_> {
             p,
             q,
             state: orbit.state,
-            impacts_n: shape.impact_velocities.len(),
+            impacts_n: orbit.impacts_n,
             multipliers: orbit.multipliers,
             orbit_residual: orbit.residual,
             test_residual,
@@ -443,7 +388,7 @@ pub fn trace_curve(
     Ok(Curve {
         kind,
         period_m: m,
-        parameters: (family.parameters.0.symbol(), family.parameters.1.symbol()),
+        parameters: family.symbols,
         points,
         codim_two,
         ends: if closed {
@@ -463,18 +408,23 @@ fn start<'f, 'a>(
     (p0, q0): (f64, f64),
     m: u64,
 ) -> Result<(System<'f, 'a>, DVector<f64>, Linear, Borders), Error> {
-    let sim0 = family.simulator(p0, q0)?;
+    let member0 = family.member(p0, q0)?;
+    let sim0 = member0.map();
+    if kind == CurveKind::Grazing {
+        member0.simulator()?;
+    }
     // a state already on a period-m orbit (a branch point a one-parameter run reported) is
     // taken as it is: shooting at fixed p is ill-conditioned next to a fold, where the
     // extended system is not
     let on_orbit = {
-        let px = sim0.run(x0, m, &mut ())?.state;
+        sim0.check_state("start state", x0)?;
+        let px = sim0.advance(x0, 0, m, false)?.state;
         relative_residual(&px, x0) <= 1e-8
     };
     let x = if on_orbit {
         x0.clone()
     } else {
-        let start = shooting::shoot(&sim0, x0, m)?;
+        let start = shooting::shoot(sim0, x0, m)?;
         if start.period_m != m {
             return Err(Error::Unsupported(format!(
                 "shooting for period {m} at (p, q) = ({p0}, {q0}) converged to an orbit of \
@@ -488,9 +438,9 @@ fn start<'f, 'a>(
         family,
         kind,
         m,
-        sc: Scaled::new(&x, sim0.model().free_tip_amplitude()),
+        sc: Scaled::new(&x, member0.floor()),
     };
-    let (_, mono, _) = shooting::map_with_jacobian(&sim0, &x, m)?;
+    let (_, mono, _) = shooting::map_with_jacobian(sim0, &x, m)?;
     let borders = initial_borders(kind, &system.sc, &mono)?;
     let (z0, lin0, borders) = locate(&system, &x, p0, q0, borders)?;
     Ok((system, z0, lin0, borders))
@@ -521,6 +471,19 @@ pub fn locate_point(
     })
 }
 
+/// Whether a Newton step that ends in this error may be retried shorter: a state or model
+/// out of range, a run that breaks, chatters, or a singular test system.
+fn recoverable(e: &Error) -> bool {
+    matches!(
+        e,
+        Error::Parameter(_)
+            | Error::Invariant(_)
+            | Error::Flow(_)
+            | Error::Chatter(_)
+            | Error::NotConverged { .. }
+    )
+}
+
 /// Newton on (ξ, u) at fixed v = ln q0 from the orbit x at p0: the first point, its
 /// linearisation and borders.
 fn locate(
@@ -536,8 +499,26 @@ fn locate(
     z[n] = p0.ln();
     z[n + 1] = q0.ln();
     let mut last = f64::NAN;
+    // the last accepted point and the step taken from it, halved while a step lands where
+    // the model refuses the state or the run breaks (a rigid tip beyond the stop)
+    let mut back: Option<(DVector<f64>, DVector<f64>)> = None;
+    let mut halvings = 0;
     for _ in 0..MAX_LOCATE {
-        let lin = system.linearise(&z, &borders)?;
+        let lin = match system.linearise(&z, &borders) {
+            Ok(lin) => lin,
+            Err(e) if recoverable(&e) && halvings < 20 => {
+                let Some((z_back, step)) = back.as_mut() else {
+                    return Err(e);
+                };
+                *step *= 0.5;
+                z = z_back.clone();
+                z.rows_mut(0, n + 1).add_assign(&*step);
+                halvings += 1;
+                continue;
+            }
+            Err(e) => return Err(e),
+        };
+        halvings = 0;
         last = lin.f[n].abs();
         if lin.residual <= TOLERANCE && last <= TOLERANCE {
             return Ok((z, lin, borders));
@@ -549,6 +530,7 @@ fn locate(
         // at most a factor e^0.25 in p per step: the test function is only locally linear
         let cap = 0.25 / step[n].abs().max(0.25);
         step *= cap;
+        back = Some((z.clone(), step.clone()));
         z.rows_mut(0, n + 1).add_assign(&step);
         borders = lin.next_borders(&borders);
         if !z.iter().all(|v| v.is_finite()) {
