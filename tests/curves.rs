@@ -414,23 +414,11 @@ fn continue2_prints_the_librarys_curve_and_refuses_bad_input() {
 /// round-off).
 #[test]
 fn the_rigid_oscillators_period_doubling_curve_is_the_closed_forms() {
-    use crate::common::impact::{ClosedForm, C, D, F, K};
+    use crate::common::impact::{parameters, ClosedForm};
     use impacting_cantilever::engine::map::PeriodMap;
     use impacting_cantilever::engine::rigid::RigidImpact;
-    use impacting_cantilever::model::galerkin::Oscillator;
     let family = Family2::of_maps(("ω", "r"), |omega, r| {
-        let model = RigidImpact::oscillator(
-            &Oscillator {
-                stiffness: K,
-                damping: C,
-                forcing: F,
-                omega,
-                tip_gain: 1.0,
-                gap: D,
-                stop_stiffness: 0.0,
-            },
-            r,
-        )?;
+        let model = RigidImpact::oscillator(&parameters(omega), r)?;
         Ok(Box::new(model) as Box<dyn PeriodMap + Send + Sync>)
     });
     // started next to the doubling: the closed form's at r = 0.8 by bisection in ω

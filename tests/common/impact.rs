@@ -13,21 +13,22 @@ pub const F: f64 = 1.0;
 pub const D: f64 = 0.0;
 pub const R: f64 = 0.8;
 
+/// The oscillator's parameters at ω.
+pub fn parameters(omega: f64) -> Oscillator {
+    Oscillator {
+        stiffness: K,
+        damping: C,
+        forcing: F,
+        omega,
+        tip_gain: 1.0,
+        gap: D,
+        stop_stiffness: 0.0,
+    }
+}
+
 /// The oscillator with the law r.
 pub fn oscillator_with(omega: f64, r: f64) -> RigidImpact {
-    RigidImpact::oscillator(
-        &Oscillator {
-            stiffness: K,
-            damping: C,
-            forcing: F,
-            omega,
-            tip_gain: 1.0,
-            gap: D,
-            stop_stiffness: 0.0,
-        },
-        r,
-    )
-    .unwrap()
+    RigidImpact::oscillator(&parameters(omega), r).unwrap()
 }
 
 /// The closed form of the (1,1) orbit, independent of the library: the free flight
