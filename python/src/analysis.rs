@@ -44,6 +44,19 @@ fn options(
     })
 }
 
+/// The start orbit's options of a branch or a curve: the given transient, window and
+/// period, the library's defaults for the rest.
+fn start_orbit_options(transient: i64, window: i64, period: Option<i64>) -> Res<OrbitOptions> {
+    options(
+        transient,
+        window,
+        period,
+        OrbitOptions::DEFAULTS.period_tolerance,
+        OrbitOptions::DEFAULTS.max_iterations as i64,
+        false,
+    )
+}
+
 /// The periodic orbit `model` settles on from the start (see the Python layer's
 /// `find_orbit`).
 #[pyfunction]
@@ -109,20 +122,8 @@ pub fn continue_branch<'py>(
     period: Option<i64>,
     progress: Option<Py<PyAny>>,
 ) -> Res<Bound<'py, PyAny>> {
-    let which = match parameter {
-        "stop_stiffness" => Parameter::StopStiffness,
-        "omega" => Parameter::Frequency,
-        "gap" => Parameter::Gap,
-        other => return Err(bad("parameter", other, "stop_stiffness, omega or gap")),
-    };
-    let orbit = options(
-        transient,
-        window,
-        period,
-        OrbitOptions::DEFAULTS.period_tolerance,
-        OrbitOptions::DEFAULTS.max_iterations as i64,
-        false,
-    )?;
+    let which = parameter_named(parameter, "parameter")?;
+    let orbit = start_orbit_options(transient, window, period)?;
     let start = start_of(start, seed)?;
     let o = ContinueOptions {
         parameter: which,
@@ -178,14 +179,7 @@ pub fn continue_curve<'py>(
         "grazing" => CurveKind::Grazing,
         other => return Err(bad("kind", other, "fold, period_doubling or grazing")),
     };
-    let orbit = options(
-        transient,
-        window,
-        period,
-        OrbitOptions::DEFAULTS.period_tolerance,
-        OrbitOptions::DEFAULTS.max_iterations as i64,
-        false,
-    )?;
+    let orbit = start_orbit_options(transient, window, period)?;
     let start = start_of(start, seed)?;
     let o = CurveOptions {
         kind,

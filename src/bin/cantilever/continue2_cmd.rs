@@ -7,7 +7,6 @@ use crate::model_args::{ModelArgs, StartArgs};
 use crate::orbit::{spec_and_start, SearchArgs};
 use crate::progress::Bars;
 use impacting_cantilever::analysis::continuation::request::keyword;
-use impacting_cantilever::analysis::continuation::Parameter;
 use impacting_cantilever::analysis::curves::request::{curve_from, CurveOptions, CurveReport};
 use impacting_cantilever::analysis::curves::CurveKind;
 use impacting_cantilever::error::{Error, ParameterError};
@@ -58,14 +57,6 @@ pub struct Continue2Args {
     pub max_points: u64,
 }
 
-fn parameter(p: ParameterArg) -> Parameter {
-    match p {
-        ParameterArg::StopStiffness => Parameter::StopStiffness,
-        ParameterArg::Omega => Parameter::Frequency,
-        ParameterArg::Gap => Parameter::Gap,
-    }
-}
-
 /// Traces the curve.
 pub fn run(args: &Continue2Args) -> Result<CurveReport, Error> {
     // a repeated flag appends its two values: refused, not silently cut to the first pair
@@ -86,8 +77,8 @@ pub fn run(args: &Continue2Args) -> Result<CurveReport, Error> {
             KindArg::PeriodDoubling => CurveKind::PeriodDoubling,
             KindArg::Grazing => CurveKind::Grazing,
         },
-        parameter: parameter(args.parameter),
-        second: parameter(args.second),
+        parameter: args.parameter.parameter(),
+        second: args.second.parameter(),
         range: (args.range[0], args.range[1]),
         second_range: (args.second_range[0], args.second_range[1]),
         max_step: args.max_step,
@@ -141,8 +132,8 @@ pub fn to_text(r: &CurveReport) -> String {
 pub fn to_csv(r: &CurveReport, args: &Continue2Args) -> String {
     let mut s = format!(
         "{},{},contacts,orbit_residual,test_residual,spectral_radius\n",
-        keyword(parameter(args.parameter)),
-        keyword(parameter(args.second))
+        keyword(args.parameter.parameter()),
+        keyword(args.second.parameter())
     );
     for p in &r.curve.points {
         let radius = p.multipliers.first().map_or(0.0, |z| z[0].hypot(z[1]));

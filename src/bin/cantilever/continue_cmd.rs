@@ -50,15 +50,22 @@ pub struct ContinueArgs {
     pub doubling_up_to: u64,
 }
 
+impl ParameterArg {
+    /// The library's parameter.
+    pub fn parameter(self) -> Parameter {
+        match self {
+            ParameterArg::StopStiffness => Parameter::StopStiffness,
+            ParameterArg::Omega => Parameter::Frequency,
+            ParameterArg::Gap => Parameter::Gap,
+        }
+    }
+}
+
 /// Traces the branch.
 pub fn run(args: &ContinueArgs) -> Result<Continuation, Error> {
     let (spec, start, _) = spec_and_start(&args.model, &args.start)?;
     let options = ContinueOptions {
-        parameter: match args.parameter {
-            ParameterArg::StopStiffness => Parameter::StopStiffness,
-            ParameterArg::Omega => Parameter::Frequency,
-            ParameterArg::Gap => Parameter::Gap,
-        },
+        parameter: args.parameter.parameter(),
         to: args.to,
         one_way: args.one_way,
         max_step: args.max_step,

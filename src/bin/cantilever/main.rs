@@ -21,12 +21,9 @@ mod simulate;
 mod stdio;
 
 use clap::{Parser, Subcommand};
-use impacting_cantilever::analysis::convergence;
 use impacting_cantilever::error::{self, ParameterError};
 
-use impacting_cantilever::results::scene::{self, Resolution};
 use impacting_cantilever::results::scenes;
-use impacting_cantilever::results::settings;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -290,8 +287,9 @@ macro_rules! errln {
 // after the macros above, which they use
 mod book_cmd;
 mod modes_cmd;
+mod scene_cmd;
 use book_cmd::book_command;
-use modes_cmd::modes_command;
+use modes_cmd::{modes_command, modes_needed_command};
 
 /// On SIGINT, SIGTERM or SIGHUP (a closed terminal), deletes the temporary files of any
 /// write under way and exits with 128 + the signal, as a shell expects.
@@ -455,38 +453,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             json,
             set,
             list_parameters,
-        } => {
-            let spec = scenes::find(&name)?;
-            if list_parameters {
-                if spec.settable().is_empty() {
-                    outln!("scene {} has no parameters to set: its parameters are the paper's figure's own", spec.name());
-                } else {
-                    let params = spec.params_json(Resolution::Book);
-                    emit(&settings::table(spec.settable(), &params));
-                }
-                return Ok(());
-            }
-            let assignments = set
-                .iter()
-                .map(|a| settings::parse_assignment(a))
-                .collect::<Result<Vec<_>, _>>()?;
-            // refused before the output folder is touched or any work is done
-            spec.check_set(&assignments)?;
-            let dir = out.unwrap_or_else(|| PathBuf::from("out").join(spec.name()));
-            // an unwritable --out is bad input, found before the computation
-            out_dir::writable_dir(&dir)?;
-            let output =
-                spec.run_set(Resolution::Book, &assignments, &progress::Bars::default())?;
-            scene::write(spec, &output, &dir)?;
-            if json {
-                let doc = scene::key_numbers_document(spec, &output);
-                outln!("{}", json_text("scene", doc));
-            } else {
-                outln!("{}", output.rendered.table);
-                errln!("wrote {}", dir.display());
-            }
-            Ok(())
-        }
+        } => scene_cmd::scene_command(&name, out, json, &set, list_parameters),
         Command::Modes {
             modes,
             stop_stiffness,
@@ -538,48 +505,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             tolerance,
             zeta1,
             json,
-        } => {
-            let m = convergence::modes_needed(stop_stiffness, tolerance, zeta1)?;
-            if json {
-                outln!(
-                    "{}",
-                    json_text("modes-needed", serde_json::to_value(&m).unwrap_or_default())
-                );
-            } else {
-                // "N* = 12", "N* ≈ 638 (estimated …)": one relation sign, not "= ≈"
-                let needed = m.needed.to_string();
-                let relation = if needed.starts_with('≈') { "" } else { "= " };
-                outln!("N* {relation}{needed} for relative accuracy {tolerance:e} at k = {stop_stiffness}k₁ (set by the {})", m.hardest);
-                for (name, s) in &m.studies {
-                    outln!(
-                        "  {name:<22} limit {:>+.10e} ± {:.1e}  order {}",
-                        s.limit,
-                        s.uncertainty,
-                        s.order.map_or("—".to_string(), |p| format!("{p:.2}"))
-                    );
-                }
-                outln!(
-                    "  criterion (β_N)³ = k gives N = {}; scanned N = 1 … {}",
-                    m.criterion,
-                    m.largest_scanned
-                );
-                if let convergence::Needed::Unconfirmed { .. } = m.needed {
-                    let by = m.studies.iter().find(|(n, _)| *n == m.hardest);
-                    if let Some((_, s)) = by {
-                        outln!(
-                            "  the order of convergence puts N* inside the scan, but the {}'s limit is known only to ± {:.1e} relative, more than a quarter of {tolerance:e}: too coarse to confirm N* from the scanned values",
-                            m.hardest,
-                            s.uncertainty / s.scale
-                        );
-                    }
-                }
-                if let Some(why) = &m.scan_end {
-                    outln!("  the scan ends at N = {}: {why}", m.largest_scanned);
-                }
-                outln!("  observable: one contact at d₀ = 0 from the first-mode velocity profile, unforced, ζ₁ = {zeta1}");
-            }
-            Ok(())
-        }
+        } => modes_needed_command(stop_stiffness, tolerance, zeta1, json),
         Command::Orbit { args, json } => {
             let report = orbit::run(&args)?;
             if json {
