@@ -5,6 +5,7 @@
 //! brute-force transient at each step of a row.
 
 use impacting_cantilever::analysis::atlas::{self, cell::CellSearch, AtlasParams, Partial, Shard};
+use impacting_cantilever::analysis::motion::MotionClass;
 use impacting_cantilever::analysis::orbit::{settle, OrbitKind};
 use impacting_cantilever::base::progress::Silent;
 use impacting_cantilever::engine::sim::Simulator;
@@ -115,7 +116,7 @@ fn brute_force(sim: &Simulator, x0: &nalgebra::DVector<f64>) -> OrbitKind {
 fn orbits_from_rest_and_coexistence_agree_with_brute_force_transients() {
     let p = AtlasParams::test();
     let d = atlas::compute(&p, &Silent).unwrap();
-    let (mut confirmed, mut unsettled, mut coexisting) = (0, 0, 0);
+    let (mut confirmed, mut unsettled, mut coexisting, mut longer) = (0, 0, 0, 0);
     for r in &d.rows {
         for (j, c) in r.cells.iter().enumerate() {
             let sim = Simulator::new(
@@ -131,6 +132,7 @@ fn orbits_from_rest_and_coexistence_agree_with_brute_force_transients() {
                 transient: p.transient,
                 max_period: p.max_period,
                 seed: (p.seed, r.index as u64, j as u64),
+                motion: atlas::motion_options(&p, sim.model()),
             };
             let label = |a: &atlas::Attractor| OrbitKind::Periodic {
                 m: a.period_m,
@@ -150,6 +152,11 @@ fn orbits_from_rest_and_coexistence_agree_with_brute_force_transients() {
                     // that shooting would have found
                     if let OrbitKind::Periodic { m, .. } = kind {
                         assert!(m > p.max_period, "{kind} from rest at {here} missed");
+                        // settled to 1e-9 within 1000 periods: the classification, 1600
+                        // periods from rest, finds the period too
+                        let motion = c.motion.as_ref().unwrap();
+                        assert_eq!(motion.period_m, Some(m), "{kind} from rest at {here}");
+                        longer += 1;
                     }
                     unsettled += 1;
                 }
@@ -178,7 +185,13 @@ fn orbits_from_rest_and_coexistence_agree_with_brute_force_transients() {
             }
         }
     }
-    eprintln!("{confirmed} confirmed, {unsettled} unsettled, {coexisting} coexisting");
+    eprintln!(
+        "{confirmed} confirmed, {unsettled} unsettled, {coexisting} coexisting, {longer} longer"
+    );
+    // every cell without an orbit from rest, and only those, has its motion classified
+    for c in d.rows.iter().flat_map(|r| &r.cells) {
+        assert_eq!(c.motion.is_some(), c.from_rest.is_none());
+    }
     // measured: 75 of 81 confirmed (the other 6 have no orbit from rest in either), 2
     // cells with two orbits each reached from a start
     assert!(
@@ -206,6 +219,7 @@ fn continued_orbits_are_where_a_slow_frequency_sweep_settles() {
             transient: p.transient,
             max_period: p.max_period,
             seed: (p.seed, 0, j as u64),
+            motion: atlas::motion_options(&p, sim.model()),
         };
         let (cell, found) = search.run(&previous).unwrap();
         for (a, f) in cell
@@ -274,4 +288,41 @@ fn a_cancelled_shard_stops_with_interrupted() {
     let done = stop.0.load(Ordering::Relaxed);
     let rows = rayon::current_num_threads() as u64;
     assert!(done < 2 + rows, "{done} cells after cancelling at 2");
+}
+
+#[test]
+fn every_cell_without_an_orbit_from_rest_carries_a_checked_class() {
+    // two cells inside Figure 5's quasi-periodic band (N = 10, k ≈ 10k₁, ω ≈ 2): rest
+    // reaches no stable orbit there, so each cell's motion is classified, and a shard whose
+    // class does not follow from its evidence, or that lacks a class, is refused
+    let p = AtlasParams {
+        k_points: 1,
+        omega_points: 2,
+        k_over_k1_range: (10.0, 10.0),
+        omega_range: (1.99, 2.0),
+        modes: atlas::ModesRule::Fixed(10),
+        ..small()
+    };
+    let part = atlas::compute_shard(&p, Shard { index: 0, count: 1 }, &Silent).unwrap();
+    let cells = &part.rows[0].cells;
+    assert!(cells.iter().all(|c| c.from_rest.is_none()));
+    let classes: Vec<_> = cells
+        .iter()
+        .map(|c| c.motion.as_ref().unwrap().class)
+        .collect();
+    assert!(
+        classes.iter().all(|c| *c == MotionClass::QuasiPeriodic),
+        "{classes:?}"
+    );
+    assert!(atlas::merge(vec![part.clone()]).is_ok());
+    let message = |parts: Vec<Partial>| atlas::merge(parts).unwrap_err().to_string();
+    let mut relabelled = part.clone();
+    relabelled.rows[0].cells[0].motion.as_mut().unwrap().class = MotionClass::Chaotic;
+    assert!(message(vec![relabelled]).contains("motion"));
+    let mut stripped = part.clone();
+    stripped.rows[0].cells[1].motion = None;
+    assert!(message(vec![stripped]).contains("motion"));
+    let mut odd = part;
+    odd.rows[0].cells[1].motion.as_mut().unwrap().exponents[0] = f64::NAN;
+    assert!(message(vec![odd]).contains("motion"));
 }

@@ -187,6 +187,7 @@ per_scene! {
     scene_experiment => "experiment",
     scene_stiffness_matching => "stiffness-matching",
     scene_atlas => "atlas",
+    scene_basins => "basins",
     scene_boundaries => "boundaries",
     scene_work_precision => "work-precision",
     scene_side_by_side => "side-by-side",

@@ -228,7 +228,7 @@ def continue_branch(
 
 def continue_curve(
     model: Model,
-    kind: Literal["fold", "period_doubling", "grazing"],
+    kind: Literal["fold", "period_doubling", "grazing", "neimark_sacker"],
     parameter: Literal["stop_stiffness", "omega", "gap"],
     second: Literal["stop_stiffness", "omega", "gap"],
     range: tuple[float, float],
@@ -243,8 +243,9 @@ def continue_curve(
     period: Optional[int] = None,
     progress: Progress = None,
 ) -> Curve:
-    """The curve of folds (a multiplier at +1), period doublings (at −1) or grazings (the
-    tip's extremum nearest the stop touches it) of the model's orbit, in two of k/k₁
+    """The curve of folds (a multiplier at +1), period doublings (at −1), grazings (the
+    tip's extremum nearest the stop touches it) or Neimark–Sacker points (a complex pair of
+    multipliers on the unit circle) of the model's orbit, in two of k/k₁
     (``"stop_stiffness"``), ω/(β₁⁻)² (``"omega"``) and d₀ (``"gap"``): pseudo-arclength on
     the shooting problem closed by the point's test function, with the points where it
     meets other curves — ``cantilever continue2``, to the bit.

@@ -352,10 +352,11 @@ class CodimTwo(_Result):
 
 @dataclass(frozen=True, repr=False, eq=False)
 class Curve(_Result):
-    """A curve of folds, period doublings or grazings of period-m orbits in two parameters
-    (p, q), one entry per point in arclength order — ``cantilever continue2``, to the bit."""
+    """A curve of folds, period doublings, Neimark–Sacker points or grazings of period-m
+    orbits in two parameters (p, q), one entry per point in arclength order — ``cantilever
+    continue2``, to the bit."""
 
-    #: "fold", "period_doubling" or "grazing".
+    #: "fold", "period_doubling", "grazing" or "neimark_sacker".
     kind: str
     period_m: int
     modes: int
@@ -373,8 +374,8 @@ class Curve(_Result):
     multipliers: NDArray[np.complex128]
     #: ‖P^m(x) − x‖∞/‖x‖∞ of each polished orbit.
     orbit_residual: NDArray[np.float64]
-    #: How far each is from the condition: |μ ∓ 1| of the nearest multiplier, or
-    #: |d_ext − d₀|/A_free.
+    #: How far each is from the condition: |μ ∓ 1| of the nearest multiplier, ||μ| − 1| of
+    #: the complex pair nearest the unit circle, or |d_ext − d₀|/A_free.
     test_residual: NDArray[np.float64]
     codim_two: list[CodimTwo]
     #: Why each end ends (the first point's, the last point's).

@@ -151,7 +151,7 @@ fn parameter_named(name: &str, what: &str) -> Res<Parameter> {
     }
 }
 
-/// The curve of folds, period doublings or grazings in two parameters through the model's
+/// The curve of folds, period doublings, Neimark–Sacker points or grazings in two parameters through the model's
 /// orbit (see the Python layer's `continue_curve`).
 #[pyfunction]
 #[pyo3(signature = (model, kind, parameter, second, range, second_range, max_step, max_points, start, seed, transient, window, period, progress))]
@@ -177,7 +177,14 @@ pub fn continue_curve<'py>(
         "fold" => CurveKind::Fold,
         "period_doubling" => CurveKind::PeriodDoubling,
         "grazing" => CurveKind::Grazing,
-        other => return Err(bad("kind", other, "fold, period_doubling or grazing")),
+        "neimark_sacker" => CurveKind::NeimarkSacker,
+        other => {
+            return Err(bad(
+                "kind",
+                other,
+                "fold, period_doubling, grazing or neimark_sacker",
+            ))
+        }
     };
     let orbit = start_orbit_options(transient, window, period)?;
     let start = start_of(start, seed)?;

@@ -9,6 +9,7 @@ pub mod find_orbit;
 pub mod harmonics;
 pub mod impact_section;
 pub mod lyapunov;
+pub mod motion;
 pub mod orbit;
 pub mod shooting;
 pub mod simulate;

@@ -3,6 +3,7 @@
 //! kept only if stable and new.
 
 use super::{Attractor, Cell};
+use crate::analysis::motion::{self, MotionOptions};
 use crate::analysis::orbit::{random_state, relative_residual, SplitMix64};
 use crate::analysis::shooting::{self, PeriodicOrbit};
 use crate::engine::sim::{Events, Simulator, Strobe};
@@ -55,6 +56,8 @@ pub struct CellSearch<'a> {
     pub max_period: u64,
     /// The stream seed and the cell's place (row, column).
     pub seed: (u64, u64, u64),
+    /// How a motion from rest that reaches no stable orbit is classified.
+    pub motion: MotionOptions,
 }
 
 impl CellSearch<'_> {
@@ -63,7 +66,8 @@ impl CellSearch<'_> {
     ///
     /// # Errors
     /// A run that fails outside Newton ([`Error::Chatter`] beyond the contact cap in a transient,
-    /// [`Error::Invariant`]) or [`Error::Flow`] for the multipliers; a guess whose Newton fails or
+    /// [`Error::Invariant`]) or [`Error::Flow`] for the multipliers, here or in classifying the
+    /// motion from rest; a guess whose Newton fails or
     /// chatters only yields no orbit.
     pub fn run(&self, previous: &[Found]) -> Result<(Cell, Vec<Found>), Error> {
         let mut found: Vec<Found> = Vec::new();
@@ -87,11 +91,21 @@ impl CellSearch<'_> {
                 None => unsettled += 1,
             }
         }
+        let motion = match from_rest {
+            Some(_) => None,
+            None => Some(motion::classify(
+                self.sim,
+                &self.start(0),
+                &self.motion,
+                &crate::base::progress::Silent,
+            )?),
+        };
         let cell = Cell {
             attractors: found.iter().map(|f| f.attractor.clone()).collect(),
             from_rest,
             unsettled_starts: unsettled,
             check: None,
+            motion,
         };
         Ok((cell, found))
     }
@@ -122,7 +136,15 @@ impl CellSearch<'_> {
     /// As [`Self::run`]: a transient's [`Error::Chatter`] or [`Error::Invariant`], or an error of
     /// shooting other than non-convergence or chatter (e.g. [`Error::Flow`]).
     pub fn from_start(&self, s: usize) -> Result<Option<PeriodicOrbit>, Error> {
-        let mut x = self.start(s);
+        self.from_state(self.start(s))
+    }
+
+    /// As [`Self::from_start`], from any state `x` at the start of cycle 0.
+    ///
+    /// # Errors
+    /// As [`Self::from_start`].
+    pub fn from_state(&self, x: DVector<f64>) -> Result<Option<PeriodicOrbit>, Error> {
+        let mut x = x;
         let chunk = self.transient.div_ceil(3);
         let mut cycle = 0;
         let window = 2 * self.max_period;
@@ -210,7 +232,10 @@ impl CellSearch<'_> {
     }
 
     /// Adds an orbit unless it is one already found; returns its index.
-    fn add(&self, found: &mut Vec<Found>, orbit: PeriodicOrbit) -> Result<usize, Error> {
+    ///
+    /// # Errors
+    /// The errors of the run over the orbit's period ([`Error::Chatter`], [`Error::Invariant`]).
+    pub fn add(&self, found: &mut Vec<Found>, orbit: PeriodicOrbit) -> Result<usize, Error> {
         let x = DVector::from_column_slice(&orbit.state);
         if let Some(i) = found.iter().position(|f| {
             f.attractor.period_m == orbit.period_m

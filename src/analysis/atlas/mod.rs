@@ -16,6 +16,12 @@
 //!
 //! Orbits found twice (up to a shift along the orbit) are recognised and counted once.
 //!
+//! **What the other motions are.** A cell whose start from rest reaches no stable orbit of
+//! period ≤ max_m is classified from rest by [`crate::analysis::motion`] with
+//! [`motion_options`]: chaotic, quasi-periodic, periodic after all (a longer period or a
+//! slower transient), or undecided, with the Lyapunov exponents, the period and the rotation
+//! number as its evidence.
+//!
 //! **Determinism and sharding.** A row depends only on the parameters and its index: its
 //! random starts come from streams seeded by (seed, row, column, start). So the atlas
 //! does not depend on the number of threads, and rows can be computed in separate
@@ -26,11 +32,13 @@
 //! same (m, n) as the N-mode orbit from rest and impact velocities within the truncation
 //! rule's tolerance.
 
+pub mod basins;
 pub mod cell;
 mod shard;
 
 pub use shard::{build, compute, compute_shard, merge, Partial, Shard, PARTIAL_FORMAT};
 
+use crate::analysis::motion::{Motion, MotionOptions};
 use crate::base::progress::{Progress, Task};
 use crate::engine::sim::Simulator;
 use crate::error::{self, Error, ParameterError};
@@ -437,6 +445,28 @@ pub struct Check {
     pub missed: usize,
 }
 
+/// How the motion from rest of a cell without a stable orbit of period ≤ max_m is
+/// classified: after the atlas's transient, 20 segments of 50 periods for the two leading
+/// Lyapunov exponents (measured on Figure 5's quasi-periodic band at N = 10: λ₁'s
+/// interval is ±0.004–0.006 per unit time, ~15 ms a cell), 256 iterates for a period up to
+/// 64 and the rotation number. The resolution ε is a quarter of mode 1's free decay rate
+/// C₁₁/2 = ζ₁ω₁ (0.0088 per unit time at ζ₁ = 0.01): an exponent within ε of zero is four
+/// times slower than any decay of the beam without the stop, and a λ₁ interval wider than
+/// 2ε cannot tell a torus from weak chaos.
+pub fn motion_options(
+    p: &AtlasParams,
+    model: &crate::model::galerkin::GalerkinModel,
+) -> MotionOptions {
+    MotionOptions {
+        transient: p.transient,
+        segments: 20,
+        periods: 50,
+        iterates: 256,
+        longest_period: 64,
+        resolution: model.damping()[0] / 2.0 / 4.0,
+    }
+}
+
 /// One (k, ω) cell.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Cell {
@@ -448,6 +478,9 @@ pub struct Cell {
     pub unsettled_starts: usize,
     /// The convergence check, on checked cells.
     pub check: Option<Check>,
+    /// What the motion from rest is, on cells where rest reaches no stable orbit of period
+    /// ≤ max_m ([`motion_options`]).
+    pub motion: Option<Motion>,
 }
 
 impl Cell {
@@ -527,6 +560,7 @@ pub fn row(
             transient: p.transient,
             max_period: p.max_period,
             seed: (p.seed, i as u64, j as u64),
+            motion: motion_options(p, sim.model()),
         };
         let (mut cell, found) = search.run(&previous)?;
         if checked_row && j.is_multiple_of(p.check_stride) {

@@ -190,6 +190,23 @@ impl Partial {
                 if c.from_rest != rest {
                     return bad(at("from_rest"), "the attractor that start 0 (rest) reached");
                 }
+                // the motion from rest is classified exactly where rest reached no orbit, and
+                // its class is the one its evidence gives
+                let options = super::motion_options(p, &row_model);
+                match (&c.motion, c.from_rest) {
+                    (Some(_), Some(_)) | (None, None) => {
+                        return bad(at("motion"), "a class exactly where rest reaches no orbit")
+                    }
+                    (Some(m), None)
+                        if !m.consistent(options.longest_period, options.resolution) =>
+                    {
+                        return bad(
+                            at("motion"),
+                            "finite evidence and the class the classification rule gives it",
+                        )
+                    }
+                    _ => {}
+                }
                 // continued orbits come from the previous cell's, one each at most
                 let continued = c.attractors.iter().filter(|a| a.continued).count();
                 let before = j.checked_sub(1).map_or(0, |b| r.cells[b].attractors.len());
@@ -238,7 +255,7 @@ impl Partial {
 }
 
 /// The `format` of a [`Partial`].
-pub const PARTIAL_FORMAT: &str = "impacting-cantilever atlas shard v2";
+pub const PARTIAL_FORMAT: &str = "impacting-cantilever atlas shard v3";
 
 /// Computes the rows of one shard in parallel (rayon), reporting its cells to `progress` (a
 /// task "atlas cells") and stopping within a cell of each row when `progress` is cancelled.

@@ -40,7 +40,7 @@ fn others(kind: CurveKind, multipliers: &[[f64; 2]]) -> [f64; 3] {
     let critical = match kind {
         CurveKind::Fold => Some(1.0),
         CurveKind::PeriodDoubling => Some(-1.0),
-        CurveKind::Grazing => None,
+        CurveKind::Grazing | CurveKind::NeimarkSacker => None,
     };
     let skip = critical.and_then(|c| {
         (0..multipliers.len()).min_by(|&i, &j| {
@@ -48,9 +48,26 @@ fn others(kind: CurveKind, multipliers: &[[f64; 2]]) -> [f64; 3] {
             d(i).total_cmp(&d(j))
         })
     });
+    // on a Neimark–Sacker curve the critical pair: the complex multipliers nearest the circle
+    let pair = (kind == CurveKind::NeimarkSacker)
+        .then(|| {
+            (0..multipliers.len())
+                .filter(|&k| multipliers[k][1] > 0.0)
+                .min_by(|&i, &j| {
+                    let d = |k: usize| (multipliers[k][0].hypot(multipliers[k][1]) - 1.0).abs();
+                    d(i).total_cmp(&d(j))
+                })
+        })
+        .flatten();
+    let is_pair = |i: usize| {
+        pair.is_some_and(|p| {
+            let (a, b) = (multipliers[p], multipliers[i]);
+            i == p || (b[0] == a[0] && b[1] == -a[1])
+        })
+    };
     let mut out = [0.0f64; 3];
     for (i, z) in multipliers.iter().enumerate() {
-        if Some(i) == skip {
+        if Some(i) == skip || is_pair(i) {
             continue;
         }
         let r = z[0].hypot(z[1]);

@@ -4,7 +4,13 @@
 //! - **fold**: M − I singular (a multiplier at +1);
 //! - **period doubling**: M + I singular (a multiplier at −1);
 //! - **grazing**: the interior extremum of the tip displacement nearest the stop touches it,
-//!   s = (d_ext − d₀)/A_free ([`crate::analysis::continuation::shape`]).
+//!   s = (d_ext − d₀)/A_free ([`crate::analysis::continuation::shape`]);
+//! - **Neimark–Sacker**: a complex pair of multipliers on the unit circle, s = |μ| − 1 of the
+//!   complex multiplier (Im μ > 0) followed from the previous point (the one nearest it).
+//!   Its gradient is by forward differences in every state coordinate (n extra monodromies,
+//!   as the grazing test's n extra runs): simpler than the pair's eigenvectors, and the
+//!   point Newton converges to is the same, since s itself is exact. A real pair
+//!   (Im μ = 0: a 1:1 or 1:2 resonance) ends the curve with an error naming it.
 //!
 //! For the two matrix conditions s is the **bordered** test function (Govaerts, *Numerical
 //! methods for bifurcations of dynamical equilibria*, SIAM 2000, §3.4; the minimally
@@ -35,11 +41,17 @@ use nalgebra::{DMatrix, DVector};
 /// Difference step in the state (scaled) and in ln p, ln q.
 const H: f64 = 1e-6;
 
+/// A multiplier is complex when |Im μ| exceeds this fraction of |μ| (the eigensolver's
+/// round-off on a real multiplier is ~1e-15 of it).
+pub(super) const COMPLEX: f64 = 1e-9;
+
 /// The border vectors of the bordered test function (unit length).
 #[derive(Debug, Clone)]
 pub(super) struct Borders {
     b: DVector<f64>,
     c: DVector<f64>,
+    /// The critical complex multiplier at the previous point (Neimark–Sacker curves).
+    pair: Option<(f64, f64)>,
 }
 
 /// The system at one point z = (ξ, u = ln p, v = ln q).
@@ -53,18 +65,25 @@ pub(super) struct Linear {
     /// The right and left null vector estimates w, ψ (fold and period doubling), for the
     /// next borders.
     null: Option<(DVector<f64>, DVector<f64>)>,
+    /// The critical complex multiplier (Neimark–Sacker), to follow at the next point.
+    pair: Option<(f64, f64)>,
 }
 
 impl Linear {
     /// Borders for the next point: the current null vector estimates, normalised.
     pub fn next_borders(&self, old: &Borders) -> Borders {
-        match &self.null {
+        let mut next = match &self.null {
             Some((w, psi)) if w.norm() > 0.0 && psi.norm() > 0.0 => Borders {
                 b: psi.normalize(),
                 c: w.normalize(),
+                pair: old.pair,
             },
             _ => old.clone(),
+        };
+        if self.pair.is_some() {
+            next.pair = self.pair;
         }
+        next
     }
 }
 
@@ -72,7 +91,7 @@ impl Linear {
 fn sigma(kind: CurveKind) -> f64 {
     match kind {
         CurveKind::Fold => -1.0,
-        CurveKind::PeriodDoubling | CurveKind::Grazing => 1.0,
+        CurveKind::PeriodDoubling | CurveKind::Grazing | CurveKind::NeimarkSacker => 1.0,
     }
 }
 
@@ -108,10 +127,51 @@ pub(super) fn initial_borders(
         .enumerate()
         .min_by(|a, b| a.1.total_cmp(b.1))
         .map_or(0, |(k, _)| k);
+    // a Neimark–Sacker curve follows the complex multiplier nearest the unit circle
+    let pair = if kind == CurveKind::NeimarkSacker {
+        let pair = mono
+            .complex_eigenvalues()
+            .iter()
+            .filter(|z| z.im > COMPLEX * z.norm())
+            .min_by(|a, b| (a.norm() - 1.0).abs().total_cmp(&(b.norm() - 1.0).abs()))
+            .map(|z| (z.re, z.im));
+        if pair.is_none() {
+            return Err(Error::Unsupported(
+                "the orbit has no complex pair of Floquet multipliers: no Neimark–Sacker \
+                 point to follow"
+                    .into(),
+            ));
+        }
+        pair
+    } else {
+        None
+    };
     Ok(Borders {
         b: u.column(k).into_owned(),
         c: vt.row(k).transpose(),
+        pair,
     })
+}
+
+/// The Neimark–Sacker test at a monodromy: |μ| − 1 of the complex multiplier nearest
+/// `previous`, and that multiplier.
+fn neimark_sacker_test(
+    mono: &DMatrix<f64>,
+    previous: (f64, f64),
+) -> Result<(f64, (f64, f64)), Error> {
+    let target = nalgebra::Complex::new(previous.0, previous.1);
+    mono.complex_eigenvalues()
+        .iter()
+        .filter(|z| z.im > COMPLEX * z.norm())
+        .min_by(|a, b| (*a - target).norm().total_cmp(&(*b - target).norm()))
+        .map(|z| (z.norm() - 1.0, (z.re, z.im)))
+        .ok_or_else(|| {
+            Error::Unsupported(
+                "the critical pair of Floquet multipliers became real (a 1:1 or 1:2 \
+                 resonance): the Neimark–Sacker curve ends"
+                    .into(),
+            )
+        })
 }
 
 /// Solves the bordered system and its transpose: (w, s, ψ).
@@ -193,6 +253,7 @@ impl System<'_, '_> {
         f.rows_mut(0, n)
             .copy_from(&(&px - &x).component_div(s_scale));
         let mut null = None;
+        let mut pair = None;
         match self.kind {
             CurveKind::Fold | CurveKind::PeriodDoubling => {
                 let a = scaled(&self.sc, &mono) + DMatrix::identity(n, n) * sigma(self.kind);
@@ -215,6 +276,27 @@ impl System<'_, '_> {
                 }
                 null = Some((w, psi));
             }
+            CurveKind::NeimarkSacker => {
+                let previous = borders.pair.ok_or_else(|| {
+                    Error::Invariant("a Neimark–Sacker system without its pair".into())
+                })?;
+                let (s, mu) = neimark_sacker_test(&mono, previous)?;
+                f[n] = s;
+                // forward differences of s, each following the pair from μ
+                for j in 0..n {
+                    let mut xj = x.clone();
+                    xj[j] += H * s_scale[j];
+                    let (_, mono_j, _) = map_with_jacobian(sim, &xj, self.m)?;
+                    jacobian[(n, j)] = (neimark_sacker_test(&mono_j, mu)?.0 - s) / H;
+                }
+                for (col, sim_h) in shifted.iter().enumerate() {
+                    let (px_h, mono_h, _) = map_with_jacobian(sim_h.map(), &x, self.m)?;
+                    let dg = (&px_h - &px).component_div(s_scale) / H;
+                    jacobian.view_mut((0, n + col), (n, 1)).copy_from(&dg);
+                    jacobian[(n, n + col)] = (neimark_sacker_test(&mono_h, mu)?.0 - s) / H;
+                }
+                pair = Some(mu);
+            }
             CurveKind::Grazing => {
                 let s = grazing_test(&member, &x, self.m)?;
                 f[n] = s;
@@ -236,6 +318,7 @@ impl System<'_, '_> {
             jacobian,
             residual: relative_residual(&px, &x),
             null,
+            pair,
         })
     }
 }

@@ -1,5 +1,6 @@
 //! Two-parameter continuation of codimension-one points of periodic orbits (beyond the
-//! paper): the curves of folds, period doublings and grazings in a plane of two parameters —
+//! paper): the curves of folds, period doublings, Neimark–Sacker points and grazings in a
+//! plane of two parameters —
 //! (k, ω) or (ω, d₀) of the compliant model — that bound the regions of the atlas. Folds and
 //! period doublings are traced for any model with an exact period-map Jacobian as well (the
 //! rigid-impact model with its saltation matrices, [`Family2::of_maps`]); grazings read the
@@ -8,15 +9,17 @@
 //! **The extended system.** A point of a curve is z = (ξ, u, v): the orbit's scaled state
 //! at the start of a forcing period and u = ln p, v = ln q. It solves the n equations of the
 //! shooting problem G = P^m(x) − x = 0 and one test function s = 0 (`defining`: bordered
-//! determinants of M ∓ I for folds and period doublings; the signed distance of the
-//! extremum nearest the stop for grazings). Those are n + 1 equations in n + 2 unknowns: a
+//! determinants of M ∓ I for folds and period doublings; |μ| − 1 of the complex pair for
+//! Neimark–Sacker points; the signed distance of the extremum nearest the stop for
+//! grazings). Those are n + 1 equations in n + 2 unknowns: a
 //! curve, traced by pseudo-arclength (Keller) exactly as one-parameter branches are
 //! ([`crate::analysis::continuation`]), and started by Newton on (ξ, u) at fixed q from an
 //! orbit near the point (e.g. a bifurcation a one-parameter run reported).
 //!
 //! **Each point is then polished** by shooting at its (p, q) to the shooting tolerance and
 //! reported with two residuals: the orbit's, and the test's own measure — the distance of
-//! the nearest multiplier from +1 or −1, or |d_ext − d₀|/A_free.
+//! the nearest multiplier from +1 or −1, of the complex pair from the unit circle, or
+//! |d_ext − d₀|/A_free.
 //!
 //! **Codimension-two points** are found between consecutive points: where the multipliers
 //! other than the critical one have one cross the unit circle (the curve meets a fold, a
@@ -53,6 +56,8 @@ pub enum CurveKind {
     PeriodDoubling,
     /// An extremum of the tip displacement at the stop.
     Grazing,
+    /// A complex pair of multipliers on the unit circle.
+    NeimarkSacker,
 }
 
 impl std::fmt::Display for CurveKind {
@@ -61,6 +66,7 @@ impl std::fmt::Display for CurveKind {
             CurveKind::Fold => "fold",
             CurveKind::PeriodDoubling => "period doubling",
             CurveKind::Grazing => "grazing",
+            CurveKind::NeimarkSacker => "Neimark–Sacker",
         })
     }
 }
@@ -112,7 +118,7 @@ pub struct CurvePoint {
     /// ‖P^m(x) − x‖∞/‖x‖∞ after polishing.
     pub orbit_residual: f64,
     /// How far the polished orbit is from the condition: |μ ∓ 1| of the nearest multiplier,
-    /// or |d_ext − d₀|/A_free.
+    /// ||μ| − 1| of the complex multiplier nearest the unit circle, or |d_ext − d₀|/A_free.
     pub test_residual: f64,
 }
 
@@ -251,6 +257,13 @@ impl Tracer<'_, '_, '_> {
         let test_residual = match sys.kind {
             CurveKind::Fold => distance(1.0),
             CurveKind::PeriodDoubling => distance(-1.0),
+            // | |μ| − 1 | of the complex multiplier nearest the unit circle
+            CurveKind::NeimarkSacker => orbit
+                .multipliers
+                .iter()
+                .filter(|z| z[1].abs() > defining::COMPLEX * z[0].hypot(z[1]))
+                .map(|z| (z[0].hypot(z[1]) - 1.0).abs())
+                .fold(f64::INFINITY, f64::min),
             CurveKind::Grazing => {
                 let sim = member.simulator()?;
                 let mut obs = ShapeObserver::new(sim);

@@ -20,6 +20,8 @@ pub enum KindArg {
     PeriodDoubling,
     /// The tip's extremum nearest the stop touches it.
     Grazing,
+    /// A complex pair of multipliers on the unit circle.
+    NeimarkSacker,
 }
 
 /// The command's inputs.
@@ -76,6 +78,7 @@ pub fn run(args: &Continue2Args) -> Result<CurveReport, Error> {
             KindArg::Fold => CurveKind::Fold,
             KindArg::PeriodDoubling => CurveKind::PeriodDoubling,
             KindArg::Grazing => CurveKind::Grazing,
+            KindArg::NeimarkSacker => CurveKind::NeimarkSacker,
         },
         parameter: args.parameter.parameter(),
         second: args.second.parameter(),

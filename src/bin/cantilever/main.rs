@@ -185,15 +185,15 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
-    /// A curve of folds, period doublings or grazings in two parameters (pseudo-arclength
-    /// on the shooting problem closed by the point's test function), with the points where
-    /// it meets other such curves. The start orbit is found as by `orbit` at the model
+    /// A curve of folds, period doublings, Neimark–Sacker points or grazings in two
+    /// parameters (pseudo-arclength on the shooting problem closed by the point's test
+    /// function), with the points where it meets other such curves. The start orbit is found as by `orbit` at the model
     /// options' values; the curve's point is found from it at the second parameter's value
     /// and the curve traced both ways within --range × --second-range.
     ///
     /// Output fields (--json): modes, start, curve: kind, period_m, parameters, points (p,
-    /// q, state, impacts_n, multipliers [re, im], orbit_residual, test_residual: |μ ∓ 1| or
-    /// |d_ext − d₀|/A_free), codim_two (meets, p, q, index), ends. --csv prints the points.
+    /// q, state, impacts_n, multipliers [re, im], orbit_residual, test_residual: |μ ∓ 1|,
+    /// ||μ| − 1| or |d_ext − d₀|/A_free), codim_two (meets, p, q, index), ends. --csv prints the points.
     Continue2 {
         #[command(flatten)]
         args: continue2_cmd::Continue2Args,

@@ -30,6 +30,7 @@ registry! {
     experiment::Experiment,
     stiffness_matching::StiffnessMatching,
     atlas::Atlas,
+    basins::Basins,
     boundaries::Boundaries,
     work_precision::WorkPrecision,
     side_by_side::SideBySide,

@@ -10,6 +10,7 @@ pub mod render;
 pub mod shards;
 
 use crate::analysis::atlas::{self, AtlasData, AtlasParams, Cell};
+use crate::analysis::motion::{Motion, MotionClass};
 use crate::error::Error;
 use crate::base::report::KeyNumbers;
 use crate::results::scene::{Outcome, Progress, Rendered, Resolution, Scene, Verdict, Group};
@@ -35,6 +36,103 @@ pub fn rest_labels(d: &AtlasData) -> Vec<(Option<(u64, usize)>, usize)> {
     let mut v: Vec<_> = count.into_iter().collect();
     v.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
     v
+}
+
+/// The classes of the motions from rest that reach no stable orbit of period ≤ max_m, with
+/// their counts, in the order the book lists them.
+pub fn motion_counts(d: &AtlasData) -> Vec<(MotionClass, usize)> {
+    [
+        MotionClass::QuasiPeriodic,
+        MotionClass::Chaotic,
+        MotionClass::Periodic,
+        MotionClass::Undecided,
+    ]
+    .into_iter()
+    .map(|class| {
+        let n = cells(d)
+            .filter(|c| c.motion.as_ref().is_some_and(|m| m.class == class))
+            .count();
+        (class, n)
+    })
+    .collect()
+}
+
+/// The evidence of one class, in words: the range of λ₁ (per unit time), the range of its
+/// 95 % half-widths, and per class the rotation numbers or the periods found (None when no
+/// cell has the class).
+pub(super) fn motion_evidence_parts(d: &AtlasData, class: MotionClass) -> Option<[String; 3]> {
+    let of: Vec<&Motion> = cells(d)
+        .filter_map(|c| c.motion.as_ref())
+        .filter(|m| m.class == class)
+        .collect();
+    if of.is_empty() {
+        return None;
+    }
+    let range = |f: &dyn Fn(&Motion) -> f64| {
+        of.iter()
+            .map(|m| f(m))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)))
+    };
+    let span = |(a, b): (f64, f64), f: &dyn Fn(f64) -> String| {
+        if a == b {
+            f(a)
+        } else {
+            format!("{} to {}", f(a), f(b))
+        }
+    };
+    let lambda = span(range(&|m| m.exponents[0]), &|v| format!("{v:.2e}"));
+    let widths = span(range(&|m| m.half_widths[0]), &|v| format!("{v:.1e}"));
+    let extra = match class {
+        MotionClass::QuasiPeriodic => format!(
+            "ρ {}, halves within {:.1e}",
+            span(range(&|m| m.rotation.turns), &|v| format!("{v:.3}")),
+            range(&|m| m.rotation.halves_differ).1
+        ),
+        MotionClass::Periodic => {
+            let periods: Vec<u64> = of.iter().filter_map(|m| m.period_m).collect();
+            let short: Vec<u64> = periods.iter().copied().filter(|&m| m <= d.params.max_period).collect();
+            let long: Vec<u64> = periods.iter().copied().filter(|&m| m > d.params.max_period).collect();
+            let mut count: BTreeMap<u64, usize> = BTreeMap::new();
+            for m in &long {
+                *count.entry(*m).or_default() += 1;
+            }
+            let most = count.iter().max_by(|a, b| a.1.cmp(b.1).then(b.0.cmp(a.0)));
+            let group = |v: &[u64]| {
+                let (lo, hi) = (v.iter().min().copied().unwrap_or(0), v.iter().max().copied().unwrap_or(0));
+                if lo == hi { format!("m = {lo}") } else { format!("m = {lo} to {hi}") }
+            };
+            let cells = |n: usize| format!("{n} cell{}", if n == 1 { "" } else { "s" });
+            let mut parts = Vec::new();
+            if !short.is_empty() {
+                parts.push(format!("{} {} (a longer transient)", cells(short.len()), group(&short)));
+            }
+            if let Some((m, n)) = most {
+                parts.push(format!(
+                    "{} {}, most often {m} ({})",
+                    cells(long.len()),
+                    group(&long),
+                    cells(*n)
+                ));
+            }
+            parts.join("; ")
+        }
+        MotionClass::Chaotic | MotionClass::Undecided => String::new(),
+    };
+    Some([lambda, widths, extra])
+}
+
+/// The evidence of one class as one line of text.
+fn motion_evidence(d: &AtlasData, class: MotionClass) -> String {
+    match motion_evidence_parts(d, class) {
+        None => "none".into(),
+        Some([lambda, widths, extra]) => {
+            let mut text = format!("λ₁ {lambda} (95 % half-widths {widths})");
+            if !extra.is_empty() {
+                text += &format!("; {extra}");
+            }
+            text
+        }
+    }
 }
 
 /// An (m, n) label as text.
@@ -206,6 +304,15 @@ impl Scene for Atlas {
             all.iter().map(|c| c.attractors.len()).max().unwrap_or(0) as i64,
         );
         k.integer("cells with no stable orbit from rest", count(&|c| c.from_rest.is_none()));
+        // each cell's class follows from its own evidence by the stated rule (exact counts of
+        // that rule; the rule's own limits are in the chapter)
+        for (class, n) in motion_counts(d) {
+            k.integer(format!("no orbit from rest: {}", class.words()), n as i64);
+            k.text(
+                format!("no orbit from rest: {} evidence", class.words()),
+                motion_evidence(d, class),
+            );
+        }
         k.integer(
             "cells with an unsettled start",
             count(&|c| c.unsettled_starts > 0),
@@ -286,7 +393,10 @@ impl Scene for Atlas {
         Ok(Rendered {
             svg: render::plot(d)?,
             table: render::labels_table(d),
-            extra_tables: vec![("decades", render::decades_table(d))],
+            extra_tables: vec![
+                ("decades", render::decades_table(d)),
+                ("motions", render::motions_table(d)),
+            ],
         })
     }
 }

@@ -3,6 +3,7 @@
 
 use super::{cells, label, rest_labels};
 use crate::analysis::atlas::{AtlasData, Cell};
+use crate::analysis::motion::MotionClass;
 use crate::results::render::{
     cell, drawing, markdown_table, omega_log_k_mesh, viridis, RenderError, LABEL_FONT, WIDTH,
 };
@@ -49,10 +50,22 @@ fn taps_color(c: &Cell) -> RGBColor {
     }]
 }
 
-/// The period m (Wong's colour-blind-safe palette).
+/// Where rest reaches no stable orbit of period ≤ max_m: the motion's class (periodic after
+/// all: sky blue, the Wong palette's; quasi-periodic: grey; chaotic: near-black;
+/// undecided: Wong's yellow).
+fn motion_color(c: &Cell) -> RGBColor {
+    match c.motion.as_ref().map(|m| m.class) {
+        Some(MotionClass::Periodic) => RGBColor(86, 180, 233),
+        Some(MotionClass::QuasiPeriodic) | None => NONE,
+        Some(MotionClass::Chaotic) => RGBColor(40, 40, 40),
+        Some(MotionClass::Undecided) => RGBColor(240, 228, 66),
+    }
+}
+
+/// The period m (Wong's colour-blind-safe palette), or the class of the motion.
 fn period_color(c: &Cell) -> RGBColor {
     match c.rest().map(|a| a.period_m) {
-        None => NONE,
+        None => motion_color(c),
         Some(1) => RGBColor(0, 114, 178),
         Some(2) => RGBColor(230, 159, 0),
         Some(3) => RGBColor(0, 158, 115),
@@ -98,7 +111,7 @@ fn panels() -> [Panel; 4] {
             ],
         },
         Panel {
-            caption: "(b) period m (forcing periods), from rest",
+            caption: "(b) period m (forcing periods), or the motion, from rest",
             color: period_color,
             key: vec![
                 (RGBColor(0, 114, 178), s("1")),
@@ -106,7 +119,10 @@ fn panels() -> [Panel; 4] {
                 (RGBColor(0, 158, 115), s("3")),
                 (RGBColor(204, 121, 167), s("4")),
                 (RGBColor(213, 94, 0), s("5–8")),
-                (NONE, s("no orbit of period ≤ 8")),
+                (RGBColor(86, 180, 233), s("periodic, found later")),
+                (NONE, s("quasi-periodic")),
+                (RGBColor(40, 40, 40), s("chaotic")),
+                (RGBColor(240, 228, 66), s("undecided")),
             ],
         },
         Panel {
@@ -317,6 +333,39 @@ pub fn decades_table(d: &AtlasData) -> String {
         .collect();
     markdown_table(
         &["$k/k_1$", "cells", "n/m > 1", "n/m ≥ 2", "≥ 2 stable orbits", "none from rest"],
+        &rows,
+    )
+}
+
+/// The motions from rest of the cells that reach no stable orbit of period ≤ max_m, by class,
+/// with the evidence of each class.
+pub fn motions_table(d: &AtlasData) -> String {
+    let counts = super::motion_counts(d);
+    let all: usize = counts.iter().map(|c| c.1).sum();
+    let rows: Vec<Vec<String>> = counts
+        .iter()
+        .map(|&(class, n)| {
+            let [lambda, widths, extra] = super::motion_evidence_parts(d, class)
+                .unwrap_or_else(|| ["—".into(), "—".into(), String::new()]);
+            vec![
+                class.words().to_string(),
+                n.to_string(),
+                format!("{:.0}%", 100.0 * n as f64 / all.max(1) as f64),
+                lambda,
+                widths,
+                if extra.is_empty() { "—".into() } else { extra },
+            ]
+        })
+        .collect();
+    markdown_table(
+        &[
+            "motion from rest",
+            "cells",
+            "share",
+            "λ₁ per unit time",
+            "its 95 % half-widths",
+            "further evidence",
+        ],
         &rows,
     )
 }

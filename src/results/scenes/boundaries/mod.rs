@@ -165,7 +165,7 @@ fn boundary(
             .iter()
             .filter(|b| b.kind == BifurcationKind::Grazing && b.impacts == (1, 2))
             .min_by(|a, b| a.parameter.total_cmp(&b.parameter)),
-        CurveKind::Fold => None,
+        CurveKind::Fold | CurveKind::NeimarkSacker => None,
     };
     let Some(bif) = chosen else {
         return Ok(none(format!(

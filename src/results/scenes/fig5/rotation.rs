@@ -18,12 +18,13 @@
 //! out near 0.1 between neighbours near 0.27 or 0.23; the principal plane does not.
 
 use super::{forced, Fig5Data, Fig5Params};
+use crate::analysis::motion;
 use crate::analysis::orbit::{self, OrbitKind};
 use crate::analysis::shooting;
 use crate::base::report::{KeyNumbers, Uncertainty};
 use crate::engine::sim::Simulator;
 use crate::error::Error;
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DVector;
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -58,31 +59,7 @@ pub struct Band {
     pub other_motion: usize,
 }
 
-/// ρ of a sequence of points in the plane: the mean angle turned per step about `centre`,
-/// in turns, folded into [0, 1/2] (the sense of turning is a matter of axes).
-pub fn rotation_number(points: &[(f64, f64)], (cx, cy): (f64, f64)) -> f64 {
-    let n = points.len() as f64;
-    let turns: f64 = points
-        .windows(2)
-        .map(|w| {
-            let a = (w[0].1 - cy).atan2(w[0].0 - cx);
-            let b = (w[1].1 - cy).atan2(w[1].0 - cx);
-            // the step's angle in (−π, π]: a step never turns by more than half a turn
-            let mut d = b - a;
-            while d > std::f64::consts::PI {
-                d -= std::f64::consts::TAU;
-            }
-            while d <= -std::f64::consts::PI {
-                d += std::f64::consts::TAU;
-            }
-            d
-        })
-        .sum::<f64>()
-        / std::f64::consts::TAU
-        / (n - 1.0);
-    let r = turns.abs().rem_euclid(1.0);
-    r.min(1.0 - r)
-}
+pub use crate::analysis::motion::rotation_number;
 
 /// |arg μ|/2π of the complex multiplier of largest modulus, in turns.
 pub(super) fn pair_rotation(multipliers: &[[f64; 2]]) -> Option<f64> {
@@ -115,33 +92,11 @@ fn measure(p: &Fig5Params, modes: usize, k_over_k1: f64) -> Result<Option<Rotati
     if fixed.period_m != 1 || fixed.impacts_n != 1 {
         return Ok(None);
     }
-    // the plane in which the iterates spread most: their two principal directions
-    let mut cov = DMatrix::zeros(2 * modes, 2 * modes);
-    for x in iterates {
-        let y = x - &mean;
-        cov += &y * y.transpose() / n;
-    }
-    let eig = nalgebra::SymmetricEigen::new(cov);
-    let mut order: Vec<usize> = (0..2 * modes).collect();
-    order.sort_by(|&i, &j| eig.eigenvalues[j].total_cmp(&eig.eigenvalues[i]));
-    let (u, v) = (
-        eig.eigenvectors.column(order[0]),
-        eig.eigenvectors.column(order[1]),
-    );
-    let centre = DVector::from_column_slice(&fixed.state);
-    let points: Vec<(f64, f64)> = iterates
-        .iter()
-        .map(|x| {
-            let y = x - &centre;
-            (u.dot(&y), v.dot(&y))
-        })
-        .collect();
-    let (a, b) = points.split_at(points.len() / 2);
-    let origin = (0.0, 0.0);
+    let r = motion::rotation_about(iterates, &DVector::from_column_slice(&fixed.state));
     Ok(Some(RotationPoint {
         k_over_k1,
-        rotation: rotation_number(&points, origin),
-        halves_differ: (rotation_number(a, origin) - rotation_number(b, origin)).abs(),
+        rotation: r.turns,
+        halves_differ: r.halves_differ,
     }))
 }
 
