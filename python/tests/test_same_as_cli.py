@@ -204,6 +204,22 @@ def test_curve_of_grazings_in_k_and_omega(cli: Cli) -> None:
         ic.continue_curve(m, "fold", "omega", "stop_stiffness", (3.0, 1.0), (10.0, 300.0))
 
 
+def test_curve_of_neimark_sacker_points(cli: Cli) -> None:
+    m = ic.replace(ic.problems.figure4(2), stop_stiffness=7.5)
+    c = ic.continue_curve(
+        m, "neimark_sacker", "stop_stiffness", "omega", (2.0, 40.0), (1.9, 2.1)
+    )
+    doc = cli.json(
+        "continue2", "--modes", "2", "--stop-stiffness", "7.5", "--zeta1", "0.01",
+        "--omega", "2", "--periods", "1000", "--record", "65", "--kind", "neimark-sacker",
+        "--parameter", "stop-stiffness", "--second", "omega", "--range", "2", "40",
+        "--second-range", "1.9", "2.1",
+    )  # fmt: skip
+    assert c.document == doc
+    assert c.kind == "neimark_sacker" and len(c) > 10
+    assert c.test_residual.max() <= 1e-9
+
+
 def test_modes_needed(cli: Cli) -> None:
     m = ic.modes_needed(5000, 1e-4)
     doc = cli.json("modes-needed", "--stop-stiffness", "5000", "--tolerance", "1e-4")
