@@ -126,14 +126,7 @@ fn orbits_from_rest_and_coexistence_agree_with_brute_force_transients() {
                     .unwrap(),
             )
             .unwrap();
-            let search = CellSearch {
-                sim: &sim,
-                starts: p.starts,
-                transient: p.transient,
-                max_period: p.max_period,
-                seed: (p.seed, r.index as u64, j as u64),
-                motion: atlas::motion_options(&p, sim.model()),
-            };
+            let search = CellSearch::new(&p, &sim, (r.index, j));
             let label = |a: &atlas::Attractor| OrbitKind::Periodic {
                 m: a.period_m,
                 n: a.impacts_n as u64,
@@ -213,14 +206,7 @@ fn continued_orbits_are_where_a_slow_frequency_sweep_settles() {
     for (j, &w) in omegas.iter().enumerate() {
         // (N = 10, as the book's atlas used at this k before N was matched to k)
         let sim = Simulator::new(p.model(10, 100.0, w).unwrap().model().unwrap()).unwrap();
-        let search = CellSearch {
-            sim: &sim,
-            starts: p.starts,
-            transient: p.transient,
-            max_period: p.max_period,
-            seed: (p.seed, 0, j as u64),
-            motion: atlas::motion_options(&p, sim.model()),
-        };
+        let search = CellSearch::new(&p, &sim, (0, j));
         let (cell, found) = search.run(&previous).unwrap();
         for (a, f) in cell
             .attractors

@@ -4,18 +4,16 @@
 
 use impacting_cantilever::analysis::atlas::basins::{basins, BasinParams};
 use impacting_cantilever::analysis::atlas::cell::CellSearch;
-use impacting_cantilever::analysis::atlas::motion_options;
 use impacting_cantilever::analysis::orbit::{settle, OrbitKind};
 use impacting_cantilever::base::progress::Silent;
 use impacting_cantilever::engine::sim::Simulator;
-use impacting_cantilever::results::scenes::basins as scene;
 use nalgebra::DVector;
 
 #[test]
 fn basins_agree_with_the_atlas_and_with_brute_force_for_any_thread_count() {
     let p = BasinParams {
         points: 7,
-        ..scene::test()
+        ..BasinParams::test()
     };
     let d = basins(&p, &Silent).unwrap();
     let one = rayon::ThreadPoolBuilder::new()
@@ -28,16 +26,9 @@ fn basins_agree_with_the_atlas_and_with_brute_force_for_any_thread_count() {
     let a = &p.atlas;
     let (k, w) = (a.k_over_k1(p.cell.0), a.omega_over_w1(p.cell.1));
     let sim = Simulator::new(a.model(p.modes, k, w).unwrap().model().unwrap()).unwrap();
-    let search = CellSearch {
-        sim: &sim,
-        starts: 1,
-        transient: a.transient,
-        max_period: a.max_period,
-        seed: (a.seed, p.cell.0 as u64, p.cell.1 as u64),
-        motion: motion_options(a, sim.model()),
-    };
+    let search = CellSearch::new(a, &sim, p.cell);
     let rest = search.from_start(0).unwrap().unwrap();
-    let centre = scene::from_rest(&d).unwrap();
+    let centre = d.from_rest().unwrap();
     assert_eq!(
         (centre.period_m, centre.impacts_n),
         (rest.period_m, rest.impacts_n)
@@ -67,7 +58,7 @@ fn basins_agree_with_the_atlas_and_with_brute_force_for_any_thread_count() {
 #[test]
 fn bad_basin_parameters_are_refused_by_name() {
     let bad = |p: BasinParams| basins(&p, &Silent).unwrap_err().to_string();
-    let p = scene::test();
+    let p = BasinParams::test();
     assert!(bad(BasinParams {
         points: 10,
         ..p.clone()

@@ -22,6 +22,7 @@ mod continuum;
 mod convergence;
 mod critical_damping;
 mod curves;
+mod curves_neimark_sacker;
 mod diff;
 mod energetic;
 mod files_recheck;

@@ -1,6 +1,7 @@
 //! Helpers shared by the integration tests.
 
 pub mod cli;
+pub mod curves;
 pub mod impact;
 
 use impacting_cantilever::model::galerkin::{GalerkinModel, Region};

@@ -14,7 +14,7 @@
 //! the thread count.
 
 use super::cell::{CellSearch, Found};
-use super::{motion_options, AtlasParams, Attractor};
+use super::{AtlasParams, Attractor};
 use crate::base::progress::Progress;
 use crate::engine::sim::Simulator;
 use crate::error::{Error, ParameterError};
@@ -59,6 +59,27 @@ pub struct BasinData {
 }
 
 impl BasinParams {
+    /// The book's cell: row 49 and column 106 of the book's atlas, k = 34.9k₁ and
+    /// ω = 2.587(β₁⁻)², where rest and one random start reach a (2,2) orbit and the other a
+    /// (1,1) orbit; its row uses N = 10. 81 × 81 starts within ±4 free tip amplitudes.
+    pub fn book() -> Self {
+        Self {
+            atlas: AtlasParams::book(),
+            cell: (49, 106),
+            modes: 10,
+            points: 81,
+            extent: 4.0,
+        }
+    }
+
+    /// The tests' resolution: the same cell, 11 × 11 starts.
+    pub fn test() -> Self {
+        Self {
+            points: 11,
+            ..Self::book()
+        }
+    }
+
     /// Checks the parameters.
     ///
     /// # Errors
@@ -93,6 +114,27 @@ impl BasinParams {
     }
 }
 
+impl BasinData {
+    /// Starts that reached each orbit, and those that reached none.
+    pub fn counts(&self) -> (Vec<usize>, usize) {
+        let mut per = vec![0; self.orbits.len()];
+        let mut none = 0;
+        for r in self.reached.iter().flatten() {
+            match r {
+                Some(i) => per[*i] += 1,
+                None => none += 1,
+            }
+        }
+        (per, none)
+    }
+
+    /// The orbit rest (the centre start) reaches.
+    pub fn from_rest(&self) -> Option<&Attractor> {
+        let c = self.params.points / 2;
+        self.reached[c][c].map(|i| &self.orbits[i])
+    }
+}
+
 /// The basins of one cell; each finished start advances a task "basin starts".
 ///
 /// # Errors
@@ -103,14 +145,7 @@ pub fn basins(p: &BasinParams, progress: &dyn Progress) -> Result<BasinData, Err
     let a = &p.atlas;
     let (k, w) = (a.k_over_k1(p.cell.0), a.omega_over_w1(p.cell.1));
     let sim = Simulator::new(a.model(p.modes, k, w)?.model()?)?;
-    let search = CellSearch {
-        sim: &sim,
-        starts: 1,
-        transient: a.transient,
-        max_period: a.max_period,
-        seed: (a.seed, p.cell.0 as u64, p.cell.1 as u64),
-        motion: motion_options(a, sim.model()),
-    };
+    let search = CellSearch::new(a, &sim, p.cell);
     let n = p.points;
     let axis: Vec<f64> = (0..n)
         .map(|i| p.extent * (2.0 * i as f64 / (n - 1) as f64 - 1.0))

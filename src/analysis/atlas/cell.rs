@@ -2,7 +2,7 @@
 //! cell of the row, and those reached from seeded starts, each converged by shooting and
 //! kept only if stable and new.
 
-use super::{Attractor, Cell};
+use super::{AtlasParams, Attractor, Cell};
 use crate::analysis::motion::{self, MotionOptions};
 use crate::analysis::orbit::{random_state, relative_residual, SplitMix64};
 use crate::analysis::shooting::{self, PeriodicOrbit};
@@ -44,6 +44,28 @@ pub struct Found {
     pub strobe: Vec<DVector<f64>>,
 }
 
+/// How the motion from rest of a cell without a stable orbit of period ≤ max_m is
+/// classified: after the atlas's transient, 20 segments of 50 periods for the two leading
+/// Lyapunov exponents (measured on Figure 5's quasi-periodic band at N = 10: λ₁'s
+/// interval is ±0.004–0.006 per unit time, ~15 ms a cell), 256 iterates for a period up to
+/// 64 and the rotation number. The resolution ε is a quarter of mode 1's free decay rate
+/// C₁₁/2 = ζ₁ω₁ (0.0088 per unit time at ζ₁ = 0.01): an exponent within ε of zero is four
+/// times slower than any decay of the beam without the stop, and a λ₁ interval wider than
+/// 2ε cannot tell a torus from weak chaos.
+pub fn motion_options(
+    p: &AtlasParams,
+    model: &crate::model::galerkin::GalerkinModel,
+) -> MotionOptions {
+    MotionOptions {
+        transient: p.transient,
+        segments: 20,
+        periods: 50,
+        iterates: 256,
+        longest_period: 64,
+        resolution: model.damping()[0] / 2.0 / 4.0,
+    }
+}
+
 /// What one cell needs to know.
 pub struct CellSearch<'a> {
     /// The model at this (k, ω).
@@ -60,7 +82,21 @@ pub struct CellSearch<'a> {
     pub motion: MotionOptions,
 }
 
-impl CellSearch<'_> {
+impl<'a> CellSearch<'a> {
+    /// The search of cell (row, column) of the atlas `p`, whose model is `sim`: its starts,
+    /// transient, largest period, the cell's seed stream and the classification of a motion
+    /// from rest.
+    pub fn new(p: &AtlasParams, sim: &'a Simulator, (row, column): (usize, usize)) -> Self {
+        Self {
+            sim,
+            starts: p.starts,
+            transient: p.transient,
+            max_period: p.max_period,
+            seed: (p.seed, row as u64, column as u64),
+            motion: motion_options(p, sim.model()),
+        }
+    }
+
     /// Searches the cell: first the previous cell's attractors as guesses, then the starts.
     /// Returns the cell and its orbits (the guesses of the next cell).
     ///

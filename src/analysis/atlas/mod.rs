@@ -18,7 +18,7 @@
 //!
 //! **What the other motions are.** A cell whose start from rest reaches no stable orbit of
 //! period ≤ max_m is classified from rest by [`crate::analysis::motion`] with
-//! [`motion_options`]: chaotic, quasi-periodic, periodic after all (a longer period or a
+//! [`cell::motion_options`]: chaotic, quasi-periodic, periodic after all (a longer period or a
 //! slower transient), or undecided, with the Lyapunov exponents, the period and the rotation
 //! number as its evidence.
 //!
@@ -34,17 +34,18 @@
 
 pub mod basins;
 pub mod cell;
+mod row;
 mod shard;
 
+pub use cell::motion_options;
+pub use row::row;
 pub use shard::{build, compute, compute_shard, merge, Partial, Shard, PARTIAL_FORMAT};
 
-use crate::analysis::motion::{Motion, MotionOptions};
-use crate::base::progress::{Progress, Task};
-use crate::engine::sim::Simulator;
+use crate::analysis::motion::Motion;
+use crate::base::progress::Progress;
 use crate::error::{self, Error, ParameterError};
 use crate::model::problems::Forced;
 use crate::model::ranges;
-use cell::{CellSearch, Found};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
@@ -445,28 +446,6 @@ pub struct Check {
     pub missed: usize,
 }
 
-/// How the motion from rest of a cell without a stable orbit of period ≤ max_m is
-/// classified: after the atlas's transient, 20 segments of 50 periods for the two leading
-/// Lyapunov exponents (measured on Figure 5's quasi-periodic band at N = 10: λ₁'s
-/// interval is ±0.004–0.006 per unit time, ~15 ms a cell), 256 iterates for a period up to
-/// 64 and the rotation number. The resolution ε is a quarter of mode 1's free decay rate
-/// C₁₁/2 = ζ₁ω₁ (0.0088 per unit time at ζ₁ = 0.01): an exponent within ε of zero is four
-/// times slower than any decay of the beam without the stop, and a λ₁ interval wider than
-/// 2ε cannot tell a torus from weak chaos.
-pub fn motion_options(
-    p: &AtlasParams,
-    model: &crate::model::galerkin::GalerkinModel,
-) -> MotionOptions {
-    MotionOptions {
-        transient: p.transient,
-        segments: 20,
-        periods: 50,
-        iterates: 256,
-        longest_period: 64,
-        resolution: model.damping()[0] / 2.0 / 4.0,
-    }
-}
-
 /// One (k, ω) cell.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Cell {
@@ -479,7 +458,7 @@ pub struct Cell {
     /// The convergence check, on checked cells.
     pub check: Option<Check>,
     /// What the motion from rest is, on cells where rest reaches no stable orbit of period
-    /// ≤ max_m ([`motion_options`]).
+    /// ≤ max_m ([`cell::motion_options`]).
     pub motion: Option<Motion>,
 }
 
@@ -528,92 +507,4 @@ pub struct AtlasData {
     pub omega_over_w1: Vec<f64>,
     /// The rows, in increasing k.
     pub rows: Vec<Row>,
-}
-
-/// Computes row i with `modes` modes; each finished cell advances `task` by one, and the row
-/// stops before its next cell when `progress` is cancelled.
-///
-/// # Errors
-/// [`Error::Parameter`] for a cell's model out of range; [`Error::Flow`] when its flow cannot
-/// be built; the errors of [`CellSearch::run`] and of the check's searches;
-/// [`Error::Interrupted`] when cancelled.
-pub fn row(
-    p: &AtlasParams,
-    i: usize,
-    modes: usize,
-    task: &dyn Task,
-    progress: &dyn Progress,
-) -> Result<Row, Error> {
-    let k = p.k_over_k1(i);
-    let checked_row = i.is_multiple_of(p.check_stride);
-    let mut cells = Vec::with_capacity(p.omega_points);
-    let mut previous: Vec<Found> = Vec::new();
-    for j in 0..p.omega_points {
-        if progress.cancelled() {
-            return Err(Error::Interrupted);
-        }
-        let w = p.omega_over_w1(j);
-        let sim = Simulator::new(p.model(modes, k, w)?.model()?)?;
-        let search = CellSearch {
-            sim: &sim,
-            starts: p.starts,
-            transient: p.transient,
-            max_period: p.max_period,
-            seed: (p.seed, i as u64, j as u64),
-            motion: motion_options(p, sim.model()),
-        };
-        let (mut cell, found) = search.run(&previous)?;
-        if checked_row && j.is_multiple_of(p.check_stride) {
-            let check_modes = (modes + p.check_extra_modes).min(crate::model::galerkin::MAX_MODES);
-            let sim = Simulator::new(p.model(check_modes, k, w)?.model()?)?;
-            let check = CellSearch {
-                sim: &sim,
-                ..search
-            };
-            let orbit = check.from_start(0)?;
-            let change = match (&orbit, cell.rest()) {
-                (Some(o), Some(a)) if (o.period_m, o.impacts_n) == (a.period_m, a.impacts_n) => {
-                    let theirs = check.impact_velocities(o)?;
-                    Some(velocity_change(&a.impact_velocities, &theirs))
-                }
-                _ => None,
-            };
-            let extra = p.starts..p.starts + p.check_starts;
-            cell.check = Some(Check {
-                modes: check_modes,
-                from_rest: orbit.map(|o| (o.period_m, o.impacts_n)),
-                impact_velocity_change: change,
-                missed: search.missed(&found, extra)?,
-            });
-        }
-        cells.push(cell);
-        previous = found;
-        task.advance(1);
-    }
-    Ok(Row {
-        index: i,
-        k_over_k1: k,
-        modes,
-        cells,
-    })
-}
-
-/// The largest difference between two lists of entry velocities, each sorted, relative to
-/// the largest velocity (1 when their lengths differ).
-fn velocity_change(a: &[f64], b: &[f64]) -> f64 {
-    if a.len() != b.len() || a.is_empty() {
-        return 1.0;
-    }
-    let sorted = |v: &[f64]| {
-        let mut v = v.to_vec();
-        v.sort_by(f64::total_cmp);
-        v
-    };
-    let (a, b) = (sorted(a), sorted(b));
-    let scale = a.iter().chain(&b).fold(0.0f64, |m, v| m.max(v.abs()));
-    a.iter()
-        .zip(&b)
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max)
-        / scale.max(f64::MIN_POSITIVE)
 }

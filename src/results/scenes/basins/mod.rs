@@ -6,7 +6,7 @@
 pub mod render;
 
 use crate::analysis::atlas::basins::{self, BasinData, BasinParams};
-use crate::analysis::atlas::{AtlasParams, Attractor};
+use crate::analysis::atlas::Attractor;
 use crate::base::report::{pretty, KeyNumbers};
 use crate::error::Error;
 use crate::results::scene::{Group, Outcome, Progress, Rendered, Resolution, Scene, Verdict};
@@ -14,49 +14,9 @@ use crate::results::scene::{Group, Outcome, Progress, Rendered, Resolution, Scen
 /// The scene.
 pub struct Basins;
 
-/// The book's cell: row 49 and column 106 of the book's atlas, k = 34.9k₁ and
-/// ω = 2.587(β₁⁻)², where rest and one random start reach a (1,1) orbit and the other a
-/// (2,2) orbit; its row uses N = 10.
-pub fn book() -> BasinParams {
-    BasinParams {
-        atlas: AtlasParams::book(),
-        cell: (49, 106),
-        modes: 10,
-        points: 81,
-        extent: 4.0,
-    }
-}
-
-/// The tests' resolution: the same cell, 11 × 11 starts.
-pub fn test() -> BasinParams {
-    BasinParams {
-        points: 11,
-        ..book()
-    }
-}
-
 /// An orbit's label.
 pub fn label(a: &Attractor) -> String {
     format!("({},{})", a.period_m, a.impacts_n)
-}
-
-/// Starts that reached each orbit, and those that reached none.
-pub fn counts(d: &BasinData) -> (Vec<usize>, usize) {
-    let mut per = vec![0; d.orbits.len()];
-    let mut none = 0;
-    for r in d.reached.iter().flatten() {
-        match r {
-            Some(i) => per[*i] += 1,
-            None => none += 1,
-        }
-    }
-    (per, none)
-}
-
-/// The orbit rest reaches (the centre start).
-pub fn from_rest(d: &BasinData) -> Option<&Attractor> {
-    let c = d.params.points / 2;
-    d.reached[c][c].map(|i| &d.orbits[i])
 }
 
 impl Scene for Basins {
@@ -79,8 +39,8 @@ impl Scene for Basins {
 
     fn params(resolution: Resolution) -> BasinParams {
         match resolution {
-            Resolution::Book => book(),
-            Resolution::Test => test(),
+            Resolution::Book => BasinParams::book(),
+            Resolution::Test => BasinParams::test(),
         }
     }
 
@@ -102,7 +62,7 @@ impl Scene for Basins {
         );
         k.integer("starts", (d.params.points * d.params.points) as i64);
         k.integer("orbits reached", d.orbits.len() as i64);
-        let (per, none) = counts(d);
+        let (per, none) = d.counts();
         let total = (d.params.points * d.params.points).max(1) as f64;
         k.text(
             "starts per orbit",
@@ -114,12 +74,12 @@ impl Scene for Basins {
                 .join(", "),
         );
         k.integer("starts reaching no orbit", none as i64);
-        k.text("orbit from rest", from_rest(d).map_or("none".into(), label));
+        k.text("orbit from rest", d.from_rest().map_or("none".into(), label));
         k
     }
 
     fn verdict(d: &BasinData) -> Verdict {
-        let (per, none) = counts(d);
+        let (per, none) = d.counts();
         let total = d.params.points * d.params.points;
         Verdict {
             outcome: Outcome::Extension,

@@ -1,7 +1,7 @@
 //! The basins plot: each start's cell coloured by the orbit it reaches, rest marked; and the
 //! table of the orbits.
 
-use super::{counts, label};
+use super::label;
 use crate::analysis::atlas::basins::BasinData;
 use crate::results::render::{
     drawing, markdown_table, palette, styled_mesh, RenderError, CAPTION_FONT, LABEL_FONT,
@@ -56,7 +56,7 @@ pub fn plot(d: &BasinData) -> Result<String, RenderError> {
         chart
             .draw_series(std::iter::once(Cross::new((0.0, 0.0), 8, BLACK.stroke_width(3))))
             .map_err(drawing)?;
-        let (per, none) = counts(d);
+        let (per, none) = d.counts();
         let mut items: Vec<(RGBColor, String)> = d
             .orbits
             .iter()
@@ -88,7 +88,7 @@ pub fn plot(d: &BasinData) -> Result<String, RenderError> {
 /// The orbits reached: (m, n), starts, share, largest Floquet multiplier modulus, entry
 /// velocities.
 pub fn table(d: &BasinData) -> String {
-    let (per, none) = counts(d);
+    let (per, none) = d.counts();
     let total = (d.params.points * d.params.points).max(1) as f64;
     let mut rows: Vec<Vec<String>> = d
         .orbits
