@@ -306,6 +306,15 @@ impl Scene for Atlas {
         k.integer("cells with no stable orbit from rest", count(&|c| c.from_rest.is_none()));
         // each cell's class follows from its own evidence by the stated rule (exact counts of
         // that rule; the rule's own limits are in the chapter)
+        // ε of the rule: a quarter of mode 1's decay rate, the same at every k, ω and N
+        if let Ok(model) = d
+            .params
+            .model(1, d.params.k_over_k1(0), d.params.omega_over_w1(0))
+            .and_then(|f| f.model())
+        {
+            let eps = atlas::motion_options(&d.params, &model).resolution;
+            k.text("classification resolution", format!("{eps:.2e} per unit time"));
+        }
         for (class, n) in motion_counts(d) {
             k.integer(format!("no orbit from rest: {}", class.words()), n as i64);
             k.text(
