@@ -54,7 +54,8 @@ impl Scene for Basins {
         k.text(
             "cell",
             format!(
-                "k/k₁ = {}, ω/(β₁⁻)² = {:.3}, N = {}",
+                // not ending in "= <number>": the snapshot's reader would split the key there
+                "k/k₁ = {}, ω/(β₁⁻)² = {:.3}, {} modes",
                 pretty(d.k_over_k1, 3),
                 d.omega_over_w1,
                 d.params.modes
