@@ -244,7 +244,7 @@ pub fn classify<M: PeriodMap + ?Sized>(
     };
     if options.longest_period == 0
         || options.iterates < 4
-        || (options.iterates as u64) < 2 * options.longest_period
+        || (options.iterates as u64) < options.longest_period.saturating_mul(2)
     {
         return Err(bad(
             "iterates",
