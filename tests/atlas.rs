@@ -50,7 +50,8 @@ fn sharded_atlas_is_identical_to_unsharded_for_any_thread_count() {
             })
             .collect();
         parts.reverse(); // any order
-        let merged = atlas::merge(parts).unwrap();
+                         // the rows merged, then the curves traced from them, as `atlas-merge` does
+        let merged = atlas::with_curves(atlas::merge(parts).unwrap(), &Silent).unwrap();
         assert_eq!(merged, whole, "{count} shards");
         // identical down to the bytes of the data file
         assert_eq!(

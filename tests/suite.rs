@@ -14,6 +14,7 @@ mod adversarial_round3_errors;
 mod adversarial_round3_files;
 mod api;
 mod atlas;
+mod atlas_curves;
 mod basins;
 mod cli;
 mod cli_orbits;

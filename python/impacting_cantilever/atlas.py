@@ -55,7 +55,8 @@ def params(resolution: Literal["book", "test"] = "book", **changes: Any) -> Para
     """The atlas parameters: the book's (128 × 128 cells) or the tests' (9 × 9), with any
     field changed, e.g. ``params("book", k_points=512, omega_points=512)``. Fields: modes,
     k_over_k1_range, k_points, omega_range, omega_points, zeta1, gap, starts, transient,
-    max_period, seed, check_modes, check_stride, check_starts."""
+    max_period, seed, check_modes, check_stride, check_starts, curves (a dict: max_curves,
+    max_seeds, max_points, round)."""
     p: Params = json.loads(_core.atlas_params(resolution))
     unknown = set(changes) - set(p)
     if unknown:
@@ -79,21 +80,23 @@ def compute_shard(
 
 
 def merge(
-    shards: Iterable[str], out: Union[str, os.PathLike[str], None] = None
+    shards: Iterable[str],
+    out: Union[str, os.PathLike[str], None] = None,
+    progress: Optional[Callable[[str, int, int], object]] = None,
 ) -> Scene:
     """Merges the shards (JSON texts, in any order) into the atlas scene's result — key
-    numbers, verdict, data, plot — and writes its files into ``out`` if given, as
-    ``cantilever atlas-merge`` does. Refuses shards of different parameters or builds, a
-    row given twice, or a missing row."""
+    numbers, verdict, data, plot — tracing its boundary curves (``params["curves"]``), and
+    writes its files into ``out`` if given, as ``cantilever atlas-merge`` does. Refuses
+    shards of different parameters or builds, a row given twice, or a missing row."""
     path = None if out is None else os.fspath(out)
-    return Scene(_core.atlas_merge(list(shards), path))
+    return Scene(_core.atlas_merge(list(shards), path, progress))
 
 
 def compute(
     params: Params, progress: Optional[Callable[[str, int, int], object]] = None
 ) -> Scene:
     """The whole atlas in this process (one shard)."""
-    return merge([compute_shard(params, 0, 1, progress)])
+    return merge([compute_shard(params, 0, 1, progress)], progress=progress)
 
 
 def compute_sharded(params: Params, count: int, executor: Executor) -> Scene:

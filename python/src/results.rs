@@ -213,11 +213,16 @@ pub fn atlas_shard(
     })
 }
 
-/// Merges shards (JSON texts) into the atlas scene's output, as `cantilever atlas-merge`
-/// does; writes its files into `out` if given.
+/// Merges shards (JSON texts) into the atlas scene's output and traces its boundary curves,
+/// as `cantilever atlas-merge` does; writes its files into `out` if given.
 #[pyfunction]
-#[pyo3(signature = (shards, out=None))]
-pub fn atlas_merge(py: Python<'_>, shards: Vec<String>, out: Option<PathBuf>) -> Res<SceneRun> {
+#[pyo3(signature = (shards, out=None, progress=None))]
+pub fn atlas_merge(
+    py: Python<'_>,
+    shards: Vec<String>,
+    out: Option<PathBuf>,
+    progress: Option<Py<PyAny>>,
+) -> Res<SceneRun> {
     let parts = shards
         .iter()
         .enumerate()
@@ -225,14 +230,13 @@ pub fn atlas_merge(py: Python<'_>, shards: Vec<String>, out: Option<PathBuf>) ->
         .collect::<Result<Vec<_>, _>>()
         .map_err(py_error)?;
     let spec = scenes::find(Atlas::NAME).map_err(py_error)?;
-    let result = py.detach(|| {
-        let output = self::shards::merged(parts)?;
+    let out = Reporter::new(progress).run(py, |reporter| {
+        let output = self::shards::merged(parts, reporter)?;
         if let Some(dir) = &out {
             scene::write(spec, &output, dir)?;
         }
         Ok::<_, Error>(output)
-    });
-    let out = result.map_err(py_error)?;
+    })?;
     Ok(SceneRun { spec, out })
 }
 

@@ -34,6 +34,7 @@
 
 pub mod basins;
 pub mod cell;
+pub mod curves;
 mod row;
 mod shard;
 
@@ -91,6 +92,8 @@ pub struct AtlasOverrides {
     pub modes: Option<usize>,
     /// The relative accuracy of one contact that sets N at each k, 1e-6 to 0.5.
     pub modes_tolerance: Option<f64>,
+    /// Boundary curves traced at most, 0 to 256 (0: none); twice as many seeds are tried.
+    pub curves: Option<usize>,
 }
 
 /// What the atlas computes.
@@ -125,6 +128,8 @@ pub struct AtlasParams {
     /// Further random starts on checked cells, to estimate how many attractors the cells'
     /// own starts miss.
     pub check_starts: usize,
+    /// The boundary curves traced over the rows of the lowest rows' N ([`curves`]).
+    pub curves: curves::CurveSearch,
 }
 
 impl AtlasParams {
@@ -151,6 +156,12 @@ impl AtlasParams {
             check_extra_modes: 10,
             check_stride: 16,
             check_starts: 16,
+            curves: curves::CurveSearch {
+                max_curves: 10,
+                max_seeds: 20,
+                max_points: 120,
+                round: 4,
+            },
         }
     }
 
@@ -173,6 +184,12 @@ impl AtlasParams {
             omega_points: 9,
             check_stride: 4,
             check_starts: 4,
+            curves: curves::CurveSearch {
+                max_curves: 2,
+                max_seeds: 4,
+                max_points: 30,
+                round: 2,
+            },
             ..book
         }
     }
@@ -195,6 +212,10 @@ impl AtlasParams {
         }
         if let Some(v) = o.seed {
             p.seed = v;
+        }
+        if let Some(v) = o.curves {
+            p.curves.max_curves = v;
+            p.curves.max_seeds = 2 * v;
         }
         match (o.modes, o.modes_tolerance, p.modes) {
             (Some(_), Some(t), _) => {
@@ -262,6 +283,25 @@ impl AtlasParams {
         error::count_in_range("starts", self.starts, 64)?;
         error::count_in_range("check_stride", self.check_stride, 4096)?;
         error::count_in_range("check_starts", self.check_starts, 1024)?;
+        let c = &self.curves;
+        if c.max_curves > 256 {
+            return Err(ParameterError::new("curves", c.max_curves, "0 to 256"));
+        }
+        if c.max_seeds > 1024 || (c.max_curves > 0 && c.max_seeds == 0) {
+            return Err(ParameterError::new(
+                "curve seeds",
+                c.max_seeds,
+                "0 to 1024, and at least 1 when curves are traced",
+            ));
+        }
+        if !(2..=2000).contains(&c.max_points) {
+            return Err(ParameterError::new(
+                "curve points",
+                c.max_points,
+                "2 to 2000",
+            ));
+        }
+        error::count_in_range("curve seeds per round", c.round, 64)?;
         error::count_in_range("max_period", self.max_period as usize, 32)?;
         if !(1..=1_000_000).contains(&self.transient) {
             return Err(ParameterError::new(
@@ -507,4 +547,16 @@ pub struct AtlasData {
     pub omega_over_w1: Vec<f64>,
     /// The rows, in increasing k.
     pub rows: Vec<Row>,
+    /// The boundary curves over the rows of the lowest rows' N (None until traced: a merge
+    /// of shards gives the rows, [`with_curves`] the curves).
+    pub curves: Option<curves::BoundaryCurves>,
+}
+
+/// The atlas with its boundary curves traced ([`curves::trace`]).
+///
+/// # Errors
+/// As [`curves::trace`]: [`Error::Interrupted`] when cancelled.
+pub fn with_curves(mut d: AtlasData, progress: &dyn Progress) -> Result<AtlasData, Error> {
+    d.curves = Some(curves::trace(&d, &d.params.curves, progress)?);
+    Ok(d)
 }

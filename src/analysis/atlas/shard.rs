@@ -301,7 +301,10 @@ pub fn build() -> String {
 /// # Errors
 /// The errors of [`compute_shard`].
 pub fn compute(p: &AtlasParams, progress: &dyn Progress) -> Result<AtlasData, Error> {
-    merge(vec![compute_shard(p, Shard::WHOLE, progress)?])
+    super::with_curves(
+        merge(vec![compute_shard(p, Shard::WHOLE, progress)?])?,
+        progress,
+    )
 }
 
 /// Combines shards into the atlas. Refuses shards of different parameters, a row given
@@ -385,5 +388,6 @@ pub fn merge(parts: Vec<Partial>) -> Result<AtlasData, Error> {
             .collect(),
         params,
         rows: complete,
+        curves: None,
     })
 }

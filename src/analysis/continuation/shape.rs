@@ -29,6 +29,9 @@ pub struct OrbitShape {
     /// function of a grazing curve, [`crate::analysis::curves`]).
     #[serde(skip)]
     pub nearest_extremum: Option<f64>,
+    /// When that extremum occurs (t from the run's start clock's origin).
+    #[serde(skip)]
+    pub nearest_extremum_time: Option<f64>,
     /// The largest tip displacement.
     pub max_tip: f64,
 }
@@ -115,6 +118,7 @@ impl Observer for ShapeObserver {
             if self.shape.grazing_distance.is_none_or(|g| signed.abs() < g) {
                 self.shape.grazing_distance = Some(signed.abs());
                 self.shape.nearest_extremum = Some(signed);
+                self.shape.nearest_extremum_time = Some(seg.start.time() + 0.5 * (lo + hi));
             }
         }
     }
@@ -122,6 +126,45 @@ impl Observer for ShapeObserver {
     fn event(&mut self, e: &EventView) {
         if e.entering && !e.grazing {
             self.shape.impact_velocities.push(e.tip_velocity);
+        }
+    }
+}
+
+/// The tip displacement minus the gap at one time t of a run (None if the run does not
+/// reach t). At an extremum of the tip displacement its derivative in the start state or
+/// a parameter is that of the extremum's value (the extremum's time moves, but ḋ = 0
+/// there), so a grazing test's differences need the tip at the base run's extremum time
+/// only, not a new search for the extremum.
+#[derive(Debug, Clone)]
+pub struct TipAt {
+    t: f64,
+    gap: f64,
+    value: Option<f64>,
+}
+
+impl TipAt {
+    /// At time `t`, for a run of `sim`.
+    pub fn new(sim: &Simulator, t: f64) -> Self {
+        Self {
+            t,
+            gap: sim.model().params().gap,
+            value: None,
+        }
+    }
+
+    /// d(t) − d₀, if the run reached t.
+    pub fn finish(self) -> Option<f64> {
+        self.value
+    }
+}
+
+impl Observer for TipAt {
+    fn segment(&mut self, seg: &SegmentView) {
+        let t0 = seg.start.time();
+        // (a t at the run's very end may exceed the last segment's end by round-off)
+        let slack = 1e-12 * (1.0 + self.t.abs());
+        if self.value.is_none() && self.t >= t0 - slack && self.t <= t0 + seg.end + slack {
+            self.value = Some(seg.tip((self.t - t0).clamp(0.0, seg.end)).0 - self.gap);
         }
     }
 }

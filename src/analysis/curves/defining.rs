@@ -32,7 +32,7 @@
 
 use super::{CurveKind, Family2, Member};
 use crate::analysis::continuation::Scaled;
-use crate::analysis::continuation::ShapeObserver;
+use crate::analysis::continuation::{ShapeObserver, TipAt};
 use crate::analysis::orbit::relative_residual;
 use crate::analysis::shooting::map_with_jacobian;
 use crate::error::Error;
@@ -197,20 +197,29 @@ fn bordered(a: &DMatrix<f64>, borders: &Borders) -> Option<(DVector<f64>, f64, D
 }
 
 /// The grazing test function at x: (d_ext − d₀)/A_free of the extremum nearest the stop.
-fn grazing_test(member: &Member, x: &DVector<f64>, m: u64) -> Result<f64, Error> {
+fn grazing_test(member: &Member, x: &DVector<f64>, m: u64) -> Result<(f64, f64), Error> {
     let sim = member.simulator()?;
     let mut obs = ShapeObserver::new(sim);
     sim.run(x, m, &mut obs)?;
     let scale = sim.model().free_tip_amplitude().0;
-    obs.finish()
-        .nearest_extremum
-        .map(|d| d / scale)
-        .ok_or_else(|| {
-            Error::Unsupported(
-                "the orbit's tip displacement has no interior extremum: no grazing to follow"
-                    .into(),
-            )
-        })
+    let shape = obs.finish();
+    match (shape.nearest_extremum, shape.nearest_extremum_time) {
+        (Some(d), Some(t)) => Ok((d / scale, t)),
+        _ => Err(Error::Unsupported(
+            "the orbit's tip displacement has no interior extremum: no grazing to follow".into(),
+        )),
+    }
+}
+
+/// (d(t) − d₀)/A_free on the period-m run of `member` from x.
+fn tip_at(member: &Member, x: &DVector<f64>, m: u64, t: f64) -> Result<f64, Error> {
+    let sim = member.simulator()?;
+    let mut obs = TipAt::new(sim, t);
+    sim.run(x, m, &mut obs)?;
+    let scale = sim.model().free_tip_amplitude().0;
+    obs.finish().map(|d| d / scale).ok_or_else(|| {
+        Error::Invariant(format!("a period-{m} run did not reach t = {t} inside it"))
+    })
 }
 
 /// The defining system of `kind` for period-m orbits.
@@ -298,18 +307,20 @@ impl System<'_, '_> {
                 pair = Some(mu);
             }
             CurveKind::Grazing => {
-                let s = grazing_test(&member, &x, self.m)?;
+                let (s, at) = grazing_test(&member, &x, self.m)?;
                 f[n] = s;
+                // the state columns from the tip at the extremum's time (its derivative is
+                // the extremum's: ḋ = 0 there), without searching each run for extrema
                 for j in 0..n {
                     let mut xj = x.clone();
                     xj[j] += H * s_scale[j];
-                    jacobian[(n, j)] = (grazing_test(&member, &xj, self.m)? - s) / H;
+                    jacobian[(n, j)] = (tip_at(&member, &xj, self.m, at)? - s) / H;
                 }
                 for (col, sim_h) in shifted.iter().enumerate() {
                     let px_h = sim_h.map().advance(&x, 0, self.m, false)?.state;
                     let dg = (&px_h - &px).component_div(s_scale) / H;
                     jacobian.view_mut((0, n + col), (n, 1)).copy_from(&dg);
-                    jacobian[(n, n + col)] = (grazing_test(sim_h, &x, self.m)? - s) / H;
+                    jacobian[(n, n + col)] = (grazing_test(sim_h, &x, self.m)?.0 - s) / H;
                 }
             }
         }

@@ -387,8 +387,14 @@ pub fn trace_curve(
         message: "the first point of the curve could not be polished".into(),
         residual: None,
     })?;
-    let (forward, end_forward) = tracer.walk(&z0, &t0, &borders, progress)?;
-    let (backward, end_backward) = tracer.walk(&z0, &(-&t0), &borders, progress)?;
+    // the two directions are independent: traced in parallel (each is deterministic, so
+    // the curve does not depend on the thread count)
+    let back = -&t0;
+    let (forward, backward) = rayon::join(
+        || tracer.walk(&z0, &t0, &borders, progress),
+        || tracer.walk(&z0, &back, &borders, progress),
+    );
+    let ((forward, end_forward), (backward, end_backward)) = (forward?, backward?);
     let closed = end_forward.starts_with("closed");
     let mut points: Vec<CurvePoint> = if closed {
         Vec::new()

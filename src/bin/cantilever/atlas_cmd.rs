@@ -42,6 +42,11 @@ pub struct AtlasArgs {
     /// 1e-2).
     #[arg(long, allow_hyphen_values = true)]
     pub modes_tolerance: Option<f64>,
+    /// Boundary curves traced by two-parameter continuation over the rows of the lowest
+    /// rows' N, 0 to 256 (0: none; default 24, the book's; twice as many seeds are tried).
+    /// Traced by `atlas-merge` (or here when the shard is 0/1): a shard holds rows only.
+    #[arg(long)]
+    pub curves: Option<usize>,
 }
 
 /// `--resolution`.
@@ -66,6 +71,7 @@ pub fn params(a: &AtlasArgs) -> Result<AtlasParams, ParameterError> {
         seed: a.seed,
         modes: a.modes,
         modes_tolerance: a.modes_tolerance,
+        curves: a.curves,
     })
 }
 
@@ -88,7 +94,8 @@ pub fn merge(files: &[PathBuf], out: &Path) -> Result<(), Error> {
         .iter()
         .map(|f| shards::read_shard(f))
         .collect::<Result<Vec<_>, _>>()?;
-    let output = shards::merged(parts)?;
+    let bars = progress::Bars::default();
+    let output = shards::merged(parts, &bars)?;
     let spec = impacting_cantilever::results::scenes::find(Atlas::NAME)?;
     scene::write(spec, &output, out)
 }

@@ -113,7 +113,7 @@ enum Command {
     /// ± its uncertainty and how it was obtained, its unit, the parameters, the method, the
     /// build, and the software and the paper as plain text and BibTeX. Reads the book's
     /// published numbers (instant); --recompute computes the scene at the book's
-    /// resolution instead (the atlas, the longest, takes about a minute on two cores).
+    /// resolution instead (the atlas, the longest, takes about two minutes on two cores).
     Cite {
         /// The scene's name (see `cantilever list`).
         scene: String,
@@ -209,15 +209,17 @@ enum Command {
     /// shard I/N of its rows, into a JSON file; `atlas-merge` combines the shards. The
     /// merged atlas is identical to the unsharded one (each row depends only on the
     /// parameters and its index), so the shards can run on any number of machines. The
-    /// book's 128 × 128 atlas takes about a minute on two cores.
+    /// book's 128 × 128 atlas takes about two minutes on two cores (its rows about 100 s,
+    /// then its boundary curves about 30 s).
     Atlas {
         #[command(flatten)]
         args: atlas_cmd::AtlasArgs,
     },
-    /// Merge the shards written by `cantilever atlas` into the atlas scene's output
-    /// (plot.svg, table.md, decades.md, data.json, key_numbers.json, verdict.json), as
-    /// `cantilever scene atlas` writes it. Refuses shards of different parameters or
-    /// builds, a row given twice, or a missing row.
+    /// Merge the shards written by `cantilever atlas`, trace the atlas's boundary curves
+    /// (--curves of `atlas`; about 30 s for the book's), and write the atlas scene's output
+    /// (plot.svg, table.md, decades.md, curves.md, data.json, key_numbers.json,
+    /// verdict.json, …), as `cantilever scene atlas` writes it. Refuses shards of different
+    /// parameters or builds, a row given twice, or a missing row.
     AtlasMerge {
         /// The shard files (every shard of one atlas, in any order).
         #[arg(required = true)]

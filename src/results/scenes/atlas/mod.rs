@@ -4,8 +4,10 @@
 //! ω/(β₁⁻)² 0.5…3 (Figure 4's ζ₁ = 0.01 and d₀ = 0), how many coexist, and how many
 //! contacts per forcing period the beam makes ("drum rolls": n/m ≥ 2). The paper shows
 //! multiple taps at single parameter points (Figures 4, 6(b), 9); the atlas maps where
-//! they live.
+//! they live, and its boundary curves by two-parameter continuation ([`boundaries`]) say
+//! which bifurcations bound the regions.
 
+pub mod boundaries;
 pub mod render;
 pub mod shards;
 
@@ -261,7 +263,7 @@ impl Scene for Atlas {
         "multi-tap atlas: stable orbits (m, n) and their coexistence over k and ω, N matched to k";
     const CLAIM: &'static str = "None: it shows multiple taps at single parameter points (Figures 4, 6(b), 9), not where in $(k, \\omega)$ they occur.";
     const CHAPTER: &'static str = "atlas.md";
-    const METHOD: &'static str = "each row is one k with N matched to it (the fewest modes giving one contact's observables to 1 %, computed every 8th row, each row taking the next stiffer computed row's N), swept up in ω (128 × 128 cells, k/k₁ log-spaced 1–10⁴, ω/(β₁⁻)² linear 0.5–3): a cell's stable periodic orbits come from natural continuation of the previous cell's orbits and from three seeded starts (rest and two random states, transients of up to 300 periods, read after every 100), each converged by Newton shooting to a relative residual of 1e-12, reduced to its least period m ≤ 8, kept if its Floquet multipliers lie inside the unit circle, and counted once; every 16th row and column is checked from rest with 10 more modes (the same (m, n) and entry velocities within 1 %) and with 16 further random starts";
+    const METHOD: &'static str = "each row is one k with N matched to it (the fewest modes giving one contact's observables to 1 %, computed every 8th row, each row taking the next stiffer computed row's N), swept up in ω (128 × 128 cells, k/k₁ log-spaced 1–10⁴, ω/(β₁⁻)² linear 0.5–3): a cell's stable periodic orbits come from natural continuation of the previous cell's orbits and from three seeded starts (rest and two random states, transients of up to 300 periods, read after every 100), each converged by Newton shooting to a relative residual of 1e-12, reduced to its least period m ≤ 8, kept if its Floquet multipliers lie inside the unit circle, and counted once; every 16th row and column is checked from rest with 10 more modes (the same (m, n) and entry velocities within 1 %) and with 16 further random starts; over the rows of N = 10, up to 10 boundary curves (folds, period doublings, Neimark–Sacker points, grazings) are traced by two-parameter continuation from the bifurcations met between neighbouring cells, and each boundary between cells is checked for a curve within one grid step";
     const HEADLINE: &'static [(&'static str, &'static str)] = &[
         ("cells tapping more than once per forcing period (from rest)", "multi-tap cells"),
         ("cells with coexisting stable orbits (at least)", "coexisting cells (lower bound)"),
@@ -372,6 +374,9 @@ impl Scene for Atlas {
         );
         k.text("orbits from rest at the smallest k", row_labels(d, 0));
         k.text("orbits from rest at the largest k", row_labels(d, d.rows.len() - 1));
+        if let Some(c) = &d.curves {
+            boundaries::key_numbers(&mut k, d, c);
+        }
         k
     }
 
@@ -405,6 +410,18 @@ impl Scene for Atlas {
             extra_tables: vec![
                 ("decades", render::decades_table(d)),
                 ("motions", render::motions_table(d)),
+                (
+                    "curves",
+                    d.curves
+                        .as_ref()
+                        .map_or_else(String::new, |c| boundaries::table(d, c)),
+                ),
+                (
+                    "meetings",
+                    d.curves
+                        .as_ref()
+                        .map_or_else(String::new, boundaries::meetings_table),
+                ),
             ],
         })
     }

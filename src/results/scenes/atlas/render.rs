@@ -13,13 +13,25 @@ use plotters::prelude::*;
 const NONE: RGBColor = RGBColor(190, 190, 190);
 
 /// Height of a panel's key strip.
-const KEY_HEIGHT: u32 = 100;
+const KEY_HEIGHT: u32 = 130;
 
-/// One map: a caption, the colour of a cell, and the key.
+/// One map: a caption, the colour of a cell, the key, and whether the boundary curves are
+/// drawn over it.
 struct Panel {
     caption: &'static str,
     color: fn(&Cell) -> RGBColor,
     key: Vec<(RGBColor, String)>,
+    curves: bool,
+}
+
+/// How a boundary curve of each kind is drawn: colour and whether dashed.
+fn curve_style(kind: &str) -> (RGBColor, bool) {
+    match kind {
+        "grazing" => (BLACK, false),
+        "period doubling" => (RGBColor(200, 0, 0), false),
+        "fold" => (BLACK, true),
+        _ => (RGBColor(200, 0, 0), true),
+    }
 }
 
 /// Contacts per forcing period n/m, in six classes (a sequential scale, ColorBrewer
@@ -109,6 +121,7 @@ fn panels() -> [Panel; 4] {
                 (RGBColor(37, 52, 148), s("≥ 5")),
                 (NONE, s("no orbit of period ≤ 8")),
             ],
+            curves: true,
         },
         Panel {
             caption: "(b) period m (forcing periods), or the motion, from rest",
@@ -124,6 +137,7 @@ fn panels() -> [Panel; 4] {
                 (RGBColor(40, 40, 40), s("chaotic")),
                 (RGBColor(240, 228, 66), s("undecided")),
             ],
+            curves: true,
         },
         Panel {
             caption: "(c) coexisting stable orbits found",
@@ -135,6 +149,7 @@ fn panels() -> [Panel; 4] {
                 (RGBColor(8, 48, 107), s("≥ 4")),
                 (NONE, s("none of period ≤ 8")),
             ],
+            curves: false,
         },
         Panel {
             caption: "(d) largest |Floquet multiplier|, from rest",
@@ -146,6 +161,7 @@ fn panels() -> [Panel; 4] {
                 })
                 .chain(std::iter::once((NONE, s("none"))))
                 .collect(),
+            curves: false,
         },
     ]
 }
@@ -224,20 +240,64 @@ pub fn plot(d: &AtlasData) -> Result<String, RenderError> {
                     // no label on the map (it would cover cells): the caption names the line
                 }
             }
-            draw_key(&key, &panel.key)?;
+            let mut lines: Vec<(RGBColor, bool, String)> = Vec::new();
+            if let Some(c) = d.curves.as_ref().filter(|_| panel.curves) {
+                for cv in &c.curves {
+                    let (color, dashed) = curve_style(&cv.kind);
+                    let pts: Vec<(f64, f64)> =
+                        cv.points.iter().map(|&(w, k)| (w, k.log10())).collect();
+                    let style = color.stroke_width(2);
+                    if dashed {
+                        chart
+                            .draw_series(DashedLineSeries::new(pts, 5, 4, style))
+                            .map_err(drawing)?;
+                    } else {
+                        chart.draw_series(LineSeries::new(pts, style)).map_err(drawing)?;
+                    }
+                    if !lines.iter().any(|l| l.2 == cv.kind) {
+                        lines.push((color, dashed, cv.kind.clone()));
+                    }
+                }
+            }
+            draw_key(&key, &panel.key, &lines)?;
         }
         root.present().map_err(drawing)?;
     }
     Ok(svg)
 }
 
-/// A key of coloured boxes and labels, wrapped into lines.
+/// A key of coloured boxes and labels, then line samples and labels, wrapped into lines.
 fn draw_key<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
     items: &[(RGBColor, String)],
+    lines: &[(RGBColor, bool, String)],
 ) -> Result<(), RenderError> {
     let width = area.dim_in_pixel().0 as i32;
     let (mut x, mut y) = (70, 8);
+    for (color, dashed, text) in lines.iter().map(|l| (l.0, l.1, format!("{} curve", l.2))) {
+        let w = 36 + 9 * text.chars().count() as i32 + 14;
+        if x + w > width {
+            x = 70;
+            y += 30;
+        }
+        let style = color.stroke_width(3);
+        let segments: Vec<(i32, i32)> = if dashed {
+            vec![(x, x + 8), (x + 14, x + 22), (x + 28, x + 30)]
+        } else {
+            vec![(x, x + 30)]
+        };
+        for (a, b) in segments {
+            area.draw(&PathElement::new(vec![(a, y + 10), (b, y + 10)], style))
+                .map_err(drawing)?;
+        }
+        area.draw(&Text::new(text.clone(), (x + 36, y + 2), LABEL_FONT))
+            .map_err(drawing)?;
+        x += w;
+    }
+    if !lines.is_empty() {
+        x = 70;
+        y += 30;
+    }
     for (color, text) in items {
         // 18 px sans-serif: about 9 px per character
         let w = 28 + 9 * text.chars().count() as i32 + 14;

@@ -5,6 +5,7 @@
 use super::Atlas;
 use crate::analysis::atlas::{self, AtlasParams, Partial};
 use crate::base::provenance::Provenance;
+use crate::base::progress::Progress;
 use crate::error::{Error, ParameterError};
 use crate::results::scene::{self, SceneOutput};
 use std::path::Path;
@@ -74,14 +75,15 @@ pub fn parse_shard(text: &str, which: &str) -> Result<Partial, ParameterError> {
     })
 }
 
-/// The atlas scene's output of the merged shards, its provenance naming the resolution
+/// The atlas scene's output of the merged shards with its boundary curves traced
+/// ([`atlas::with_curves`], reported to `progress`), its provenance naming the resolution
 /// ("book", "test" or "custom").
 ///
 /// # Errors
 /// As [`atlas::merge`]: shards of different parameters or builds, a row given twice or
-/// missing.
-pub fn merged(parts: Vec<Partial>) -> Result<SceneOutput, Error> {
-    let data = atlas::merge(parts)?;
+/// missing; [`Error::Interrupted`] while the curves are traced.
+pub fn merged(parts: Vec<Partial>, progress: &dyn Progress) -> Result<SceneOutput, Error> {
+    let data = atlas::with_curves(atlas::merge(parts)?, progress)?;
     let resolution = if data.params == AtlasParams::book() {
         "book"
     } else if data.params == AtlasParams::test() {

@@ -1,0 +1,599 @@
+//! The atlas's boundaries by two-parameter continuation (beyond the paper): the curves of
+//! folds, period doublings, Neimark–Sacker points and grazings ([`crate::analysis::curves`])
+//! that bound the regions of the brute-force atlas, traced in (ω, k) over the rows that use
+//! the lowest rows' N, and how well they account for its region boundaries.
+//!
+//! **Boundaries.** Two neighbouring cells (along ω or along k) whose orbits from rest have
+//! different labels (m, n) — or where one has none — meet at a boundary *edge*. An edge is a
+//! *basin* edge when the orbit from rest on one side is, by its label, among the stable
+//! orbits found on the other: rest changed basin between coexisting orbits, which no local
+//! bifurcation of either accounts for. Every other edge is a *bifurcation* edge: the orbit
+//! from rest on one side is not stable on the other, so between them it loses stability,
+//! ends at a fold or gains or loses a contact (or the atlas's search missed it there).
+//!
+//! **Seeds and curves.** Curves are seeded from bifurcation edges along ω, the most
+//! frequent pairs of labels first: the orbit from rest of one cell is continued in ω
+//! ([`crate::analysis::continuation`]) towards its neighbour, and the first fold, period
+//! doubling, Neimark–Sacker point or grazing met between the two cells is followed in
+//! (ω, k). Edges within one grid step of a traced curve are then accounted for, and the
+//! next seed is the most frequent pair still unaccounted for. Seeds are taken in rounds of
+//! a fixed size, traced in parallel and accepted in order, so the curves do not depend on
+//! the number of threads.
+//!
+//! **Agreement.** Distances are measured on the grid: one step is one column in ω or one
+//! row in ln k. An edge is within one step of a curve when the curve passes within one step
+//! of the edge's midpoint. Conversely, every grid edge a curve crosses is checked: do its
+//! two cells differ in the orbit from rest, or at least in the set of stable (m, n) found?
+
+use super::cell::CellSearch;
+use super::{AtlasData, AtlasParams, Cell};
+use crate::analysis::continuation::{
+    self, BifurcationKind, Family, Parameter, Settings as BranchSettings,
+};
+use crate::analysis::curves::{self, CodimTwo, CurveKind, CurveSettings, Family2, Meets};
+use crate::base::progress::Progress;
+use crate::engine::sim::Simulator;
+use crate::error::Error;
+use nalgebra::DVector;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use std::collections::{BTreeMap, BTreeSet};
+
+/// An orbit's label (m, n), None for no stable orbit of period ≤ max_m.
+pub type Label = Option<(u64, usize)>;
+
+/// A cell (row, column).
+type At = (usize, usize);
+
+/// How the boundary curves are searched.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct CurveSearch {
+    /// Curves traced at most (0: none).
+    pub max_curves: usize,
+    /// Seeds tried at most (a seed may fail: no bifurcation between its cells, or a curve
+    /// that cannot be started).
+    pub max_seeds: usize,
+    /// Points each way along a curve at most.
+    pub max_points: usize,
+    /// Seeds per round (traced in parallel, accepted in order).
+    pub round: usize,
+}
+
+/// What separates two neighbouring cells.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum EdgeClass {
+    /// The orbit from rest on one side is stable on the other too: a basin boundary.
+    Basin,
+    /// Neither side's orbit from rest is stable on the other.
+    Bifurcation,
+}
+
+/// A boundary edge between cells `a` and `b` (row, column), neighbours along ω or k.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Edge {
+    /// The first cell (row, column).
+    pub a: (usize, usize),
+    /// The second: (row, column + 1) or (row + 1, column).
+    pub b: (usize, usize),
+    /// The labels of their orbits from rest.
+    pub labels: (Label, Label),
+    /// Basin or bifurcation.
+    pub class: EdgeClass,
+    /// The nearest curve within one grid step of the edge's midpoint, and its distance in
+    /// grid steps.
+    pub curve: Option<(usize, f64)>,
+}
+
+/// A codimension-two point of a curve, between two of its points.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct CurveMeeting {
+    /// What the curve meets (a fold, period-doubling or Neimark–Sacker curve, a grazing, a
+    /// cusp).
+    pub meets: String,
+    /// ω/(β₁⁻)², interpolated, and half the distance between the two points.
+    pub omega: (f64, f64),
+    /// k/k₁, interpolated, and half the distance between the two points.
+    pub k_over_k1: (f64, f64),
+}
+
+/// One traced curve.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct BoundaryCurve {
+    /// Fold, period doubling, Neimark–Sacker or grazing.
+    pub kind: String,
+    /// The continued orbit's label (m, n) at its seed.
+    pub orbit: (u64, usize),
+    /// The cell whose orbit from rest was continued, and the neighbour it was continued
+    /// towards (row, column).
+    pub seed: ((usize, usize), (usize, usize)),
+    /// The points (ω/(β₁⁻)², k/k₁) in arclength order.
+    pub points: Vec<(f64, f64)>,
+    /// The largest orbit and test residuals over the points (relative; see
+    /// [`crate::analysis::curves::CurvePoint`]).
+    pub residuals: (f64, f64),
+    /// Its codimension-two points.
+    pub meetings: Vec<CurveMeeting>,
+    /// Why each end ends.
+    pub ends: (String, String),
+}
+
+/// A seed that gave no curve, and why.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct FailedSeed {
+    /// The cell and its neighbour.
+    pub seed: ((usize, usize), (usize, usize)),
+    /// Why.
+    pub why: String,
+}
+
+/// The curves of an atlas.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct BoundaryCurves {
+    /// The search's settings.
+    pub search: CurveSearch,
+    /// The rows covered: 0 to `rows` − 1, all using N = `modes`.
+    pub rows: usize,
+    /// N.
+    pub modes: usize,
+    /// The curves, in the order they were accepted.
+    pub curves: Vec<BoundaryCurve>,
+    /// Seeds that gave none.
+    pub failed: Vec<FailedSeed>,
+    /// Seeds whose curve was one already traced (another seed of the same round on it).
+    pub duplicates: usize,
+}
+
+/// The cell (row, column).
+fn cell(d: &AtlasData, (i, j): (usize, usize)) -> &Cell {
+    &d.rows[i].cells[j]
+}
+
+/// A cell's label.
+pub fn label(c: &Cell) -> Label {
+    c.rest().map(|a| (a.period_m, a.impacts_n))
+}
+
+/// The labels of a cell's stable orbits.
+fn stable(c: &Cell) -> BTreeSet<(u64, usize)> {
+    c.attractors
+        .iter()
+        .map(|a| (a.period_m, a.impacts_n))
+        .collect()
+}
+
+/// The rows that use the N of row 0, from row 0 (the curves are traced at that N).
+pub fn covered_rows(d: &AtlasData) -> usize {
+    let n0 = d.rows.first().map(|r| r.modes);
+    d.rows.iter().take_while(|r| Some(r.modes) == n0).count()
+}
+
+/// Grid coordinates (column, row) of (ω, k): one unit is one grid step.
+fn grid(p: &AtlasParams, (omega, k): (f64, f64)) -> (f64, f64) {
+    let (w0, w1) = p.omega_range;
+    let (k0, k1) = p.k_over_k1_range;
+    let col = if p.omega_points > 1 {
+        (omega - w0) / (w1 - w0) * (p.omega_points - 1) as f64
+    } else {
+        0.0
+    };
+    let row = if p.k_points > 1 {
+        (k / k0).ln() / (k1 / k0).ln() * (p.k_points - 1) as f64
+    } else {
+        0.0
+    };
+    (col, row)
+}
+
+/// The distance of point c from segment ab.
+fn segment_distance(a: (f64, f64), b: (f64, f64), c: (f64, f64)) -> f64 {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let len2 = dx * dx + dy * dy;
+    let t = if len2 > 0.0 {
+        (((c.0 - a.0) * dx + (c.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (a.0 + t * dx - c.0).hypot(a.1 + t * dy - c.1)
+}
+
+/// The distance of point c (grid coordinates) from a curve's polyline.
+fn curve_distance(p: &AtlasParams, curve: &BoundaryCurve, c: (f64, f64)) -> f64 {
+    let pts: Vec<(f64, f64)> = curve.points.iter().map(|&q| grid(p, q)).collect();
+    match pts.len() {
+        0 => f64::INFINITY,
+        1 => (pts[0].0 - c.0).hypot(pts[0].1 - c.1),
+        _ => pts
+            .windows(2)
+            .map(|w| segment_distance(w[0], w[1], c))
+            .fold(f64::INFINITY, f64::min),
+    }
+}
+
+/// Whether `b` is `a` traced again (from another seed): the same kind and orbit, and most of
+/// its points within one grid step of `a` (two tracings of one curve differ by their steps).
+fn same_curve(p: &AtlasParams, a: &BoundaryCurve, b: &BoundaryCurve) -> bool {
+    if a.kind != b.kind || a.orbit != b.orbit || b.points.is_empty() {
+        return false;
+    }
+    let near = b
+        .points
+        .iter()
+        .filter(|&&q| curve_distance(p, a, grid(p, q)) <= 1.0)
+        .count();
+    2 * near >= b.points.len()
+}
+
+/// Every boundary edge of the covered rows, with the nearest curve within one step.
+pub fn edges(d: &AtlasData, c: &BoundaryCurves) -> Vec<Edge> {
+    let rows = c.rows.min(d.rows.len());
+    let mut out = Vec::new();
+    let cell = |(i, j): (usize, usize)| &d.rows[i].cells[j];
+    for i in 0..rows {
+        let width = d.rows[i].cells.len();
+        for j in 0..width {
+            let mut pairs = Vec::new();
+            if j + 1 < width {
+                pairs.push(((i, j), (i, j + 1)));
+            }
+            if i + 1 < rows {
+                pairs.push(((i, j), (i + 1, j)));
+            }
+            for (a, b) in pairs {
+                let (la, lb) = (label(cell(a)), label(cell(b)));
+                if la == lb {
+                    continue;
+                }
+                let basin = la.is_some_and(|l| stable(cell(b)).contains(&l))
+                    || lb.is_some_and(|l| stable(cell(a)).contains(&l));
+                let mid = ((a.1 + b.1) as f64 / 2.0, (a.0 + b.0) as f64 / 2.0);
+                let curve = c
+                    .curves
+                    .iter()
+                    .enumerate()
+                    .map(|(n, cv)| (n, curve_distance(&d.params, cv, mid)))
+                    .filter(|&(_, dist)| dist <= 1.0)
+                    .min_by(|x, y| x.1.total_cmp(&y.1));
+                out.push(Edge {
+                    a,
+                    b,
+                    labels: (la, lb),
+                    class: if basin {
+                        EdgeClass::Basin
+                    } else {
+                        EdgeClass::Bifurcation
+                    },
+                    curve,
+                });
+            }
+        }
+    }
+    out
+}
+
+/// A grid edge a curve crosses, and whether its two cells differ in the orbit from rest and
+/// in the set of stable (m, n).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Crossing {
+    /// The curve.
+    pub curve: usize,
+    /// The two cells.
+    pub cells: ((usize, usize), (usize, usize)),
+    /// Their orbits from rest differ.
+    pub rest_differs: bool,
+    /// Their sets of stable (m, n) differ.
+    pub stable_differs: bool,
+}
+
+/// Every grid edge (between two covered cells) each curve crosses, once per curve.
+pub fn crossings(d: &AtlasData, c: &BoundaryCurves) -> Vec<Crossing> {
+    let rows = c.rows.min(d.rows.len());
+    let mut out = Vec::new();
+    for (n, curve) in c.curves.iter().enumerate() {
+        let mut seen = BTreeSet::new();
+        let pts: Vec<(f64, f64)> = curve.points.iter().map(|&q| grid(&d.params, q)).collect();
+        for w in pts.windows(2) {
+            let ((u0, v0), (u1, v1)) = (w[0], w[1]);
+            // lines through cell centres: column j (u = j) and row i (v = i); crossing the
+            // row line v = i between columns j and j + 1 crosses the edge along ω there
+            for (lo, hi, along_omega) in [
+                (v0.min(v1), v0.max(v1), true),
+                (u0.min(u1), u0.max(u1), false),
+            ] {
+                let mut line = lo.ceil();
+                while line <= hi {
+                    let (s0, s1, t0, t1) = if along_omega {
+                        (v0, v1, u0, u1)
+                    } else {
+                        (u0, u1, v0, v1)
+                    };
+                    if s1 != s0 {
+                        let t = t0 + (t1 - t0) * (line - s0) / (s1 - s0);
+                        let (f, l) = (t.floor(), line as usize);
+                        if f >= 0.0 {
+                            let f = f as usize;
+                            let pair = if along_omega {
+                                ((l, f), (l, f + 1))
+                            } else {
+                                ((f, l), (f + 1, l))
+                            };
+                            let inside =
+                                |(i, j): (usize, usize)| i < rows && j < d.rows[i].cells.len();
+                            if inside(pair.0) && inside(pair.1) {
+                                seen.insert(pair);
+                            }
+                        }
+                    }
+                    line += 1.0;
+                }
+            }
+        }
+        for (a, b) in seen {
+            let (ca, cb) = (&d.rows[a.0].cells[a.1], &d.rows[b.0].cells[b.1]);
+            out.push(Crossing {
+                curve: n,
+                cells: (a, b),
+                rest_differs: label(ca) != label(cb),
+                stable_differs: stable(ca) != stable(cb) || label(ca) != label(cb),
+            });
+        }
+    }
+    out
+}
+
+/// The curve kind a one-parameter bifurcation is followed as (none for a branch point).
+fn curve_kind(kind: BifurcationKind) -> Option<CurveKind> {
+    match kind {
+        BifurcationKind::Fold => Some(CurveKind::Fold),
+        BifurcationKind::PeriodDoubling => Some(CurveKind::PeriodDoubling),
+        BifurcationKind::NeimarkSacker => Some(CurveKind::NeimarkSacker),
+        BifurcationKind::Grazing => Some(CurveKind::Grazing),
+        BifurcationKind::BranchPoint => None,
+    }
+}
+
+/// A failure that ends one seed, not the atlas (an interruption or a broken invariant
+/// ends it).
+fn seed_failure(e: Error) -> Result<String, Error> {
+    match e {
+        Error::Interrupted | Error::Invariant(_) => Err(e),
+        other => Ok(other.to_string()),
+    }
+}
+
+/// The curve through the first bifurcation of cell `from`'s orbit from rest met on the way
+/// (in ω) to cell `to`, or why there is none.
+fn trace_seed(
+    d: &AtlasData,
+    c: &CurveSearch,
+    rows: usize,
+    (from, to): ((usize, usize), (usize, usize)),
+    progress: &dyn Progress,
+) -> Result<Result<BoundaryCurve, String>, Error> {
+    let p = &d.params;
+    let modes = d.rows[from.0].modes;
+    let k = d.rows[from.0].k_over_k1;
+    let (w0, w1) = (d.omega_over_w1[from.1], d.omega_over_w1[to.1]);
+    let forced = p.model(modes, k, w0)?;
+    let sim = Simulator::new(forced.model()?)?;
+    let orbit = match CellSearch::new(p, &sim, from).from_start(0) {
+        Ok(Some(o)) => o,
+        Ok(None) => return Ok(Err("rest reaches no stable orbit".into())),
+        Err(e) => return seed_failure(e).map(Err),
+    };
+    let label = (orbit.period_m, orbit.impacts_n);
+    let family = Family::forced(forced, Parameter::Frequency);
+    let range = (w0.min(w1), w0.max(w1));
+    let settings = BranchSettings {
+        // several points within the step, so the bifurcation is bracketed there
+        max_step: (range.1 / range.0).ln() / 4.0,
+        initial_step: (range.1 / range.0).ln() / 8.0,
+        max_points: 200,
+        ..BranchSettings::new(range)
+    };
+    let direction = if w1 > w0 { 1.0 } else { -1.0 };
+    let x = DVector::from_vec(orbit.state.clone());
+    let branch = match continuation::continue_branch(
+        &family,
+        &x,
+        w0,
+        orbit.period_m,
+        direction,
+        &settings,
+    ) {
+        Ok(b) => b,
+        Err(e) => return seed_failure(e).map(|w| Err(format!("continuation in ω: {w}"))),
+    };
+    let Some((bif, kind)) = branch
+        .bifurcations
+        .iter()
+        .find_map(|b| curve_kind(b.kind).map(|k| (b, k)))
+    else {
+        return Ok(Err(format!(
+            "the ({},{}) orbit meets no bifurcation between the two cells",
+            label.0, label.1
+        )));
+    };
+    let start = &branch.points[bif.index];
+    let family2 = Family2::forced(forced, Parameter::Frequency, Parameter::StopStiffness)?;
+    let k_range = (d.rows[0].k_over_k1, d.rows[rows - 1].k_over_k1);
+    let settings2 = CurveSettings {
+        max_points: c.max_points,
+        max_step: 0.2,
+        ..CurveSettings::new(p.omega_range, k_range)
+    };
+    let state = DVector::from_vec(start.state.clone());
+    let curve = match curves::trace_curve(
+        &family2,
+        kind,
+        &state,
+        (bif.parameter, k),
+        branch.period_m,
+        &settings2,
+        progress,
+    ) {
+        Ok(cv) => cv,
+        Err(e) => return seed_failure(e).map(|w| Err(format!("{kind} curve: {w}"))),
+    };
+    let residuals = curve.points.iter().fold((0.0f64, 0.0f64), |r, q| {
+        (r.0.max(q.orbit_residual), r.1.max(q.test_residual))
+    });
+    let meetings = curve
+        .codim_two
+        .iter()
+        .map(|m: &CodimTwo| {
+            let (a, b) = (&curve.points[m.index], &curve.points[m.index + 1]);
+            CurveMeeting {
+                meets: match m.meets {
+                    Meets::Fold => "a fold curve",
+                    Meets::PeriodDoubling => "a period-doubling curve",
+                    Meets::NeimarkSacker => "a Neimark–Sacker curve",
+                    Meets::Grazing => "a grazing (the contacts change)",
+                    Meets::Cusp => "a cusp",
+                }
+                .to_string(),
+                omega: (m.p, (b.p - a.p).abs() / 2.0),
+                k_over_k1: (m.q, (b.q - a.q).abs() / 2.0),
+            }
+        })
+        .collect();
+    Ok(Ok(BoundaryCurve {
+        kind: kind.to_string(),
+        orbit: label,
+        seed: (from, to),
+        points: curve.points.iter().map(|q| (q.p, q.q)).collect(),
+        residuals,
+        meetings,
+        ends: curve.ends,
+    }))
+}
+
+/// The seeds still open: bifurcation edges along ω not within one step of a curve nor within
+/// two steps of a failed seed of the same labels, the most frequent label pair first, then
+/// by row and column; each as (cell continued, neighbour).
+fn open_seeds(d: &AtlasData, found: &BoundaryCurves) -> Vec<((usize, usize), (usize, usize))> {
+    let all = edges(d, found);
+    let pair = |e: &Edge| {
+        let (a, b) = e.labels;
+        if a <= b {
+            (a, b)
+        } else {
+            (b, a)
+        }
+    };
+    let mut frequency: BTreeMap<(Label, Label), usize> = BTreeMap::new();
+    for e in &all {
+        *frequency.entry(pair(e)).or_default() += 1;
+    }
+    let cell = |(i, j): (usize, usize)| &d.rows[i].cells[j];
+    let mut open: Vec<(usize, At, At)> = all
+        .iter()
+        .filter(|e| e.class == EdgeClass::Bifurcation && e.curve.is_none() && e.a.0 == e.b.0)
+        .filter_map(|e| {
+            let (la, lb) = e.labels;
+            // continue an orbit that is not stable on the other side
+            let seed = if la.is_some_and(|l| !stable(cell(e.b)).contains(&l)) {
+                (e.a, e.b)
+            } else if lb.is_some_and(|l| !stable(cell(e.a)).contains(&l)) {
+                (e.b, e.a)
+            } else {
+                return None;
+            };
+            let near_failure = found.failed.iter().any(|f| {
+                let (fa, fb) = f.seed;
+                (label(cell(fa)), label(cell(fb))) == (label(cell(seed.0)), label(cell(seed.1)))
+                    && (fa.0 as f64 - seed.0 .0 as f64).hypot(fa.1 as f64 - seed.0 .1 as f64) <= 2.0
+            });
+            (!near_failure).then(|| (frequency[&pair(e)], seed.0, seed.1))
+        })
+        .collect();
+    open.sort_by(|x, y| y.0.cmp(&x.0).then(x.1.cmp(&y.1)).then(x.2.cmp(&y.2)));
+    open.into_iter().map(|(_, a, b)| (a, b)).collect()
+}
+
+/// Traces the boundary curves of an atlas (see the module's doc) at the N of its first
+/// rows, over those rows.
+///
+/// # Errors
+/// [`Error::Interrupted`] when cancelled; [`Error::Invariant`] from a run; a parameter error
+/// for a model out of range. A seed that fails otherwise is recorded with its reason.
+pub fn trace(
+    d: &AtlasData,
+    search: &CurveSearch,
+    progress: &dyn Progress,
+) -> Result<BoundaryCurves, Error> {
+    let rows = covered_rows(d);
+    let mut found = BoundaryCurves {
+        search: *search,
+        rows,
+        modes: d.rows.first().map_or(0, |r| r.modes),
+        curves: Vec::new(),
+        failed: Vec::new(),
+        duplicates: 0,
+    };
+    if rows < 2 || search.max_curves == 0 {
+        return Ok(found);
+    }
+    let task = progress.task("atlas: boundary curves", search.max_seeds as u64);
+    let mut tried = 0;
+    while found.curves.len() < search.max_curves && tried < search.max_seeds {
+        let open = open_seeds(d, &found);
+        if open.is_empty() {
+            break;
+        }
+        // a round: the next seeds, one per pair of labels (a curve explains many edges of
+        // its pair; the next round sees which are left)
+        let mut round: Vec<((usize, usize), (usize, usize))> = Vec::new();
+        let labels = |x: &((usize, usize), (usize, usize))| {
+            let (a, b) = (label(cell(d, x.0)), label(cell(d, x.1)));
+            if a <= b {
+                (a, b)
+            } else {
+                (b, a)
+            }
+        };
+        for s in open {
+            if round.len() >= search.round.min(search.max_seeds - tried) {
+                break;
+            }
+            if !round.iter().any(|r| labels(r) == labels(&s)) {
+                round.push(s);
+            }
+        }
+        let results: Vec<Result<Result<BoundaryCurve, String>, Error>> = round
+            .par_iter()
+            .map(|&s| trace_seed(d, search, rows, s, progress))
+            .collect();
+        for (s, r) in round.iter().zip(results) {
+            tried += 1;
+            task.advance(1);
+            match r? {
+                Ok(curve) => {
+                    // the located curve must pass between the seed's cells (Newton at the
+                    // seed's k may converge to another point of the test function), and not
+                    // be one already traced (another seed on it)
+                    let mid = ((s.0 .1 + s.1 .1) as f64 / 2.0, s.0 .0 as f64);
+                    let duplicate = found.curves.iter().any(|cv| {
+                        curve_distance(&d.params, cv, mid) <= 1.0
+                            || same_curve(&d.params, cv, &curve)
+                    });
+                    if curve_distance(&d.params, &curve, mid) > 1.0 {
+                        found.failed.push(FailedSeed {
+                            seed: *s,
+                            why: format!(
+                                "the {} curve located from it does not pass between its cells",
+                                curve.kind
+                            ),
+                        });
+                    } else if duplicate || found.curves.len() >= search.max_curves {
+                        found.duplicates += 1;
+                    } else {
+                        found.curves.push(curve);
+                    }
+                }
+                Err(why) => found.failed.push(FailedSeed { seed: *s, why }),
+            }
+        }
+    }
+    Ok(found)
+}

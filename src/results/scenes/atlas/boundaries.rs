@@ -1,0 +1,252 @@
+//! The atlas's boundary curves in the scene: their key numbers (how many edges of the
+//! regions they account for, which are left, their codimension-two points) and their table.
+
+use super::label;
+use crate::analysis::atlas::curves::{self, BoundaryCurves, Edge, EdgeClass, Label};
+use crate::analysis::atlas::AtlasData;
+use crate::base::report::{pretty, KeyNumbers, Uncertainty};
+use crate::results::render::markdown_table;
+use std::collections::BTreeMap;
+
+/// "a of b (p %)".
+fn share(a: usize, b: usize) -> String {
+    format!("{a} of {b} ({:.0} %)", 100.0 * a as f64 / b.max(1) as f64)
+}
+
+/// An unordered pair of labels as text, "(1,1)–(1,2)".
+fn pair(e: &Edge) -> String {
+    let (a, b): (Label, Label) = if e.labels.0 <= e.labels.1 {
+        e.labels
+    } else {
+        (e.labels.1, e.labels.0)
+    };
+    format!("{}–{}", label(a), label(b))
+}
+
+/// The edges no curve accounts for, by pair of labels, most frequent first: (pair, edges,
+/// of which basin edges).
+pub fn unaccounted(edges: &[Edge]) -> Vec<(String, usize, usize)> {
+    let mut by: BTreeMap<String, (usize, usize)> = BTreeMap::new();
+    for e in edges.iter().filter(|e| e.curve.is_none()) {
+        let x = by.entry(pair(e)).or_default();
+        x.0 += 1;
+        if e.class == EdgeClass::Basin {
+            x.1 += 1;
+        }
+    }
+    let mut v: Vec<(String, usize, usize)> = by.into_iter().map(|(k, (n, b))| (k, n, b)).collect();
+    v.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
+    v
+}
+
+/// Digits a bracketed value supports: its leading digit and the first the half-width
+/// touches.
+fn digits(x: f64, half: f64) -> usize {
+    if half <= 0.0 || x == 0.0 {
+        return 6;
+    }
+    ((x.abs() / half).log10().floor() as i64 + 1).clamp(2, 9) as usize
+}
+
+/// The key numbers of the curves.
+pub fn key_numbers(k: &mut KeyNumbers, d: &AtlasData, c: &BoundaryCurves) {
+    let edges = curves::edges(d, c);
+    let covered = c.rows.min(d.rows.len());
+    if covered == 0 {
+        return;
+    }
+    let mut kinds: BTreeMap<&str, usize> = BTreeMap::new();
+    for cv in &c.curves {
+        *kinds.entry(cv.kind.as_str()).or_default() += 1;
+    }
+    let kinds: Vec<String> = kinds.iter().map(|(kind, n)| format!("{n} {kind}")).collect();
+    k.integer("boundary curves", c.curves.len() as i64);
+    k.text(
+        "boundary curves: where",
+        format!(
+            "N = {}, k/k₁ from {} to {} (rows 1 to {covered}), ω/(β₁⁻)² from {} to {}; {}",
+            c.modes,
+            pretty(d.rows[0].k_over_k1, 3),
+            pretty(d.rows[covered - 1].k_over_k1, 3),
+            pretty(d.params.omega_range.0, 3),
+            pretty(d.params.omega_range.1, 3),
+            if kinds.is_empty() { "none traced".to_string() } else { kinds.join(", ") }
+        ),
+    );
+    k.text(
+        "boundary curve seeds",
+        format!(
+            "{} tried, {} gave a new curve, {} gave none or a curve already traced",
+            c.curves.len() + c.failed.len() + c.duplicates,
+            c.curves.len(),
+            c.failed.len() + c.duplicates
+        ),
+    );
+    let near = |f: &dyn Fn(&Edge) -> bool| {
+        let of: Vec<&Edge> = edges.iter().filter(|e| f(e)).collect();
+        share(of.iter().filter(|e| e.curve.is_some()).count(), of.len())
+    };
+    k.integer("boundary edges", edges.len() as i64);
+    k.text("boundary edges within one grid step of a curve", near(&|_| true));
+    k.text(
+        "bifurcation edges within one grid step of a curve",
+        near(&|e| e.class == EdgeClass::Bifurcation),
+    );
+    k.text(
+        "basin edges within one grid step of a curve",
+        near(&|e| e.class == EdgeClass::Basin),
+    );
+    k.text(
+        "edges next to a cell without a stable orbit, within one step of a curve",
+        near(&|e| e.labels.0.is_none() || e.labels.1.is_none()),
+    );
+    let left = unaccounted(&edges);
+    k.text(
+        "edges no curve accounts for, by pair",
+        left.iter()
+            .take(12)
+            .map(|(p, n, b)| format!("{p} {n} ({b} basin)"))
+            .collect::<Vec<_>>()
+            .join(", ")
+            + &format!(
+                "; {} further pairs with {} edges",
+                left.len().saturating_sub(12),
+                left.iter().skip(12).map(|x| x.1).sum::<usize>()
+            ),
+    );
+    let crossed = curves::crossings(d, c);
+    k.text(
+        "curve crossings: orbit from rest differs",
+        share(crossed.iter().filter(|x| x.rest_differs).count(), crossed.len()),
+    );
+    k.text(
+        "curve crossings: stable orbits found differ",
+        share(crossed.iter().filter(|x| x.stable_differs).count(), crossed.len()),
+    );
+    let (orbit, test) = c
+        .curves
+        .iter()
+        .fold((0.0f64, 0.0f64), |r, cv| (r.0.max(cv.residuals.0), r.1.max(cv.residuals.1)));
+    k.text(
+        "boundary curves: largest residuals",
+        format!("orbit {orbit:.1e}, test condition {test:.1e}"),
+    );
+    let bracket = "interpolated along the curve between its two points that bracket it: half their distance";
+    let mut n = 0;
+    for (i, cv) in c.curves.iter().enumerate() {
+        for m in &cv.meetings {
+            n += 1;
+            let name = format!(
+                "codimension-two point {n} (curve {}, {} of {}, meets {})",
+                i + 1,
+                cv.kind,
+                label(Some(cv.orbit)),
+                m.meets
+            );
+            k.cited(
+                format!("{name}: omega"),
+                m.omega.0,
+                digits(m.omega.0, m.omega.1),
+                Uncertainty::new(m.omega.1, bracket),
+                "(β₁⁻)²",
+            );
+            k.cited(
+                format!("{name}: k"),
+                m.k_over_k1.0,
+                digits(m.k_over_k1.0, m.k_over_k1.1),
+                Uncertainty::new(m.k_over_k1.1, bracket),
+                "k₁",
+            );
+        }
+    }
+    k.integer("codimension-two points on the curves", n as i64);
+}
+
+/// One row per curve: kind, orbit, seed, extent, edges it accounts for, residuals, ends.
+pub fn table(d: &AtlasData, c: &BoundaryCurves) -> String {
+    let edges = curves::edges(d, c);
+    let rows: Vec<Vec<String>> = c
+        .curves
+        .iter()
+        .enumerate()
+        .map(|(i, cv)| {
+            let range = |f: &dyn Fn(&(f64, f64)) -> f64| {
+                cv.points
+                    .iter()
+                    .map(f)
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)))
+            };
+            let (w0, w1) = range(&|p| p.0);
+            let (k0, k1) = range(&|p| p.1);
+            let accounted = edges.iter().filter(|e| e.curve.map(|x| x.0) == Some(i)).count();
+            let ends = |e: &str| {
+                if e.starts_with("left") {
+                    "edge of the map"
+                } else if e.starts_with("closed") {
+                    "closed"
+                } else if e.starts_with("corrector") {
+                    "corrector failed"
+                } else {
+                    "points exhausted"
+                }
+            };
+            vec![
+                (i + 1).to_string(),
+                cv.kind.clone(),
+                label(Some(cv.orbit)),
+                format!("{:.2}–{:.2}", w0, w1),
+                format!("{}–{}", pretty(k0, 3), pretty(k1, 3)),
+                cv.points.len().to_string(),
+                accounted.to_string(),
+                cv.meetings.len().to_string(),
+                format!("{:.0e} / {:.0e}", cv.residuals.0, cv.residuals.1),
+                if cv.ends.0 == cv.ends.1 {
+                    ends(&cv.ends.0).to_string()
+                } else {
+                    format!("{}; {}", ends(&cv.ends.0), ends(&cv.ends.1))
+                },
+            ]
+        })
+        .collect();
+    markdown_table(
+        &[
+            "curve",
+            "kind",
+            "orbit (m,n)",
+            "$\\omega/(\\beta_1^-)^2$",
+            "$k/k_1$",
+            "points",
+            "edges within a step",
+            "codim-2 points",
+            "residuals: orbit / test",
+            "ends",
+        ],
+        &rows,
+    )
+}
+
+/// One row per codimension-two point: its curve, what it meets, ω and k with their brackets.
+pub fn meetings_table(c: &BoundaryCurves) -> String {
+    let mut rows: Vec<Vec<String>> = Vec::new();
+    for (i, cv) in c.curves.iter().enumerate() {
+        for m in &cv.meetings {
+            let with = |(x, h): (f64, f64)| {
+                let places = (-(h.log10().floor()) as i64 + 1).clamp(0, 9) as usize;
+                format!("{x:.places$} ± {h:.1e}")
+            };
+            rows.push(vec![
+                format!("{} ({} of {})", i + 1, cv.kind, label(Some(cv.orbit))),
+                m.meets.clone(),
+                with(m.omega),
+                with(m.k_over_k1),
+            ]);
+        }
+    }
+    if rows.is_empty() {
+        return String::new();
+    }
+    markdown_table(
+        &["curve", "meets", "$\\omega/(\\beta_1^-)^2$", "$k/k_1$"],
+        &rows,
+    )
+}

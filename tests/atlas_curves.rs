@@ -1,0 +1,267 @@
+//! The atlas's boundary curves: the edge and crossing geometry on a hand-made atlas (exact);
+//! on a small atlas, each curve checked where it crosses a row by a one-parameter run in ω
+//! of the orbit on the curve's side (it meets the same kind of bifurcation between the two
+//! cells, where the curve says); the curves do not depend on the thread count.
+
+use impacting_cantilever::analysis::atlas::curves::{
+    self, BoundaryCurve, BoundaryCurves, CurveSearch, EdgeClass,
+};
+use impacting_cantilever::analysis::atlas::{
+    self, cell::CellSearch, AtlasData, AtlasParams, Attractor, Cell, ModesRule, Row,
+};
+use impacting_cantilever::analysis::continuation::{
+    self, BifurcationKind, Family, Parameter, Settings,
+};
+use impacting_cantilever::base::progress::Silent;
+use impacting_cantilever::engine::sim::Simulator;
+use nalgebra::DVector;
+
+fn orbit(m: u64, n: usize) -> Attractor {
+    Attractor {
+        period_m: m,
+        impacts_n: n,
+        spectral_radius: 0.5,
+        continued: false,
+        starts: vec![0],
+        impact_velocities: vec![1.0; n],
+    }
+}
+
+/// A cell whose orbit from rest is the first of `orbits`.
+fn cell(orbits: &[(u64, usize)]) -> Cell {
+    Cell {
+        attractors: orbits.iter().map(|&(m, n)| orbit(m, n)).collect(),
+        from_rest: Some(0),
+        unsettled_starts: 0,
+        check: None,
+        motion: None,
+    }
+}
+
+#[test]
+fn edges_and_crossings_on_a_hand_made_atlas() {
+    // 2 k × 3 ω; from rest:   row 0: (1,1) (1,1) (1,2)
+    //                         row 1: (1,1) (2,2) (1,2), where (1,1) is stable too
+    let params = AtlasParams {
+        modes: ModesRule::Fixed(2),
+        k_over_k1_range: (1.0, 10.0),
+        k_points: 2,
+        omega_range: (1.0, 3.0),
+        omega_points: 3,
+        ..AtlasParams::test()
+    };
+    let row = |index, k, cells| Row {
+        index,
+        k_over_k1: k,
+        modes: 2,
+        cells,
+    };
+    let d = AtlasData {
+        omega_over_w1: vec![1.0, 2.0, 3.0],
+        rows: vec![
+            row(
+                0,
+                1.0,
+                vec![cell(&[(1, 1)]), cell(&[(1, 1)]), cell(&[(1, 2)])],
+            ),
+            row(
+                1,
+                10.0,
+                vec![cell(&[(1, 1)]), cell(&[(2, 2), (1, 1)]), cell(&[(1, 2)])],
+            ),
+        ],
+        params,
+        curves: None,
+    };
+    // a straight curve at ω = 2.6 (grid column 1.6) over both rows
+    let curve = BoundaryCurve {
+        kind: "grazing".into(),
+        orbit: (1, 1),
+        seed: ((0, 1), (0, 2)),
+        points: vec![(2.6, 1.0), (2.6, 10.0)],
+        residuals: (0.0, 0.0),
+        meetings: Vec::new(),
+        ends: (
+            "left the parameter rectangle".into(),
+            "left the parameter rectangle".into(),
+        ),
+    };
+    let c = BoundaryCurves {
+        search: CurveSearch {
+            max_curves: 1,
+            max_seeds: 1,
+            max_points: 2,
+            round: 1,
+        },
+        rows: 2,
+        modes: 2,
+        curves: vec![curve],
+        failed: Vec::new(),
+        duplicates: 0,
+    };
+    let edges = curves::edges(&d, &c);
+    let find = |a, b| edges.iter().find(|e| e.a == a && e.b == b).unwrap();
+    assert_eq!(edges.len(), 4, "{edges:?}");
+    // (1,1)|(1,2): neither stable on the other side; the curve passes 0.1 steps from its
+    // midpoint (column 1.5)
+    assert_eq!(find((0, 1), (0, 2)).class, EdgeClass::Bifurcation);
+    let (n, dist) = find((0, 1), (0, 2)).curve.unwrap();
+    assert!(n == 0 && (dist - 0.1).abs() < 1e-12, "{dist}");
+    assert_eq!(find((1, 1), (1, 2)).class, EdgeClass::Bifurcation);
+    // rest moves from (1,1) to (2,2) while (1,1) stays stable: basin edges; the one along
+    // ω has its midpoint at column 0.5, 1.1 steps from the curve (not within one step),
+    // the one along k at (1, 0.5), 0.6 steps from it
+    let along_omega = find((1, 0), (1, 1));
+    assert_eq!(along_omega.class, EdgeClass::Basin);
+    assert_eq!(along_omega.curve, None);
+    let along_k = find((0, 1), (1, 1));
+    assert_eq!(along_k.class, EdgeClass::Basin);
+    let (n, dist) = along_k.curve.unwrap();
+    assert_eq!(n, 0);
+    assert!((dist - 0.6).abs() < 1e-12, "{dist}");
+    // the curve crosses the two edges along ω between columns 1 and 2, nothing else
+    let crossed = curves::crossings(&d, &c);
+    let cells: Vec<_> = crossed.iter().map(|x| x.cells).collect();
+    assert_eq!(cells, vec![((0, 1), (0, 2)), ((1, 1), (1, 2))]);
+    assert!(crossed.iter().all(|x| x.rest_differs && x.stable_differs));
+}
+
+/// A small atlas at N = 2 over the rectangle of the `boundaries` chapter, where the (1,1)
+/// orbit of Figure 4 doubles its period and grazes.
+fn small() -> AtlasParams {
+    AtlasParams {
+        modes: ModesRule::Fixed(2),
+        k_over_k1_range: (30.0, 300.0),
+        k_points: 6,
+        omega_range: (1.9, 3.2),
+        omega_points: 12,
+        starts: 2,
+        check_stride: 4096,
+        check_starts: 1,
+        curves: CurveSearch {
+            max_curves: 3,
+            max_seeds: 6,
+            max_points: 40,
+            round: 2,
+        },
+        ..AtlasParams::test()
+    }
+}
+
+fn bifurcation_kind(kind: &str) -> BifurcationKind {
+    match kind {
+        "grazing" => BifurcationKind::Grazing,
+        "period doubling" => BifurcationKind::PeriodDoubling,
+        "fold" => BifurcationKind::Fold,
+        _ => BifurcationKind::NeimarkSacker,
+    }
+}
+
+/// The curve's ω where it crosses k (linear in ln k between its two points that bracket it).
+fn omega_at(curve: &BoundaryCurve, k: f64) -> Vec<f64> {
+    curve
+        .points
+        .windows(2)
+        .filter(|w| (w[0].1 - k) * (w[1].1 - k) <= 0.0 && w[0].1 != w[1].1)
+        .map(|w| {
+            let t = (k / w[0].1).ln() / (w[1].1 / w[0].1).ln();
+            w[0].0 + t * (w[1].0 - w[0].0)
+        })
+        .collect()
+}
+
+#[test]
+fn every_curve_is_where_a_one_parameter_run_finds_its_bifurcation() {
+    let p = small();
+    let d = atlas::compute(&p, &Silent).unwrap();
+    let c = d.curves.as_ref().unwrap();
+    assert!(!c.curves.is_empty(), "no curve traced: {:?}", c.failed);
+    let step = d.omega_over_w1[1] - d.omega_over_w1[0];
+    let mut checked = 0;
+    for (n, curve) in c.curves.iter().enumerate() {
+        // every point solves its condition: polished orbits, test residuals near round-off
+        // (a fold's multiplier approaches 1 as the square root of the distance: 1e-5)
+        assert!(curve.residuals.0 <= 1e-11, "{curve:?}");
+        let allowed = if curve.kind == "fold" { 1e-5 } else { 1e-9 };
+        assert!(curve.residuals.1 <= allowed, "{curve:?}");
+        for x in curves::crossings(&d, c).iter().filter(|x| x.curve == n) {
+            let ((i, j0), (i1, j1)) = x.cells;
+            if i != i1 || !x.rest_differs {
+                continue;
+            }
+            // the side whose orbit from rest is the curve's, continued towards the other
+            let label = |j: usize| curves::label(&d.rows[i].cells[j]);
+            let (from, to) = if label(j0) == Some(curve.orbit) {
+                (j0, j1)
+            } else if label(j1) == Some(curve.orbit) {
+                (j1, j0)
+            } else {
+                continue;
+            };
+            let k = d.rows[i].k_over_k1;
+            let (w0, w1) = (d.omega_over_w1[from], d.omega_over_w1[to]);
+            let forced = p.model(2, k, w0).unwrap();
+            let sim = Simulator::new(forced.model().unwrap()).unwrap();
+            let o = CellSearch::new(&p, &sim, (i, from))
+                .from_start(0)
+                .unwrap()
+                .unwrap();
+            let range = (w0.min(w1), w0.max(w1));
+            let settings = Settings {
+                max_step: (range.1 / range.0).ln() / 4.0,
+                initial_step: (range.1 / range.0).ln() / 8.0,
+                ..Settings::new(range)
+            };
+            let branch = continuation::continue_branch(
+                &Family::forced(forced, Parameter::Frequency),
+                &DVector::from_vec(o.state),
+                w0,
+                o.period_m,
+                if w1 > w0 { 1.0 } else { -1.0 },
+                &settings,
+            )
+            .unwrap();
+            let kind = bifurcation_kind(&curve.kind);
+            let found: Vec<f64> = branch
+                .bifurcations
+                .iter()
+                .filter(|b| b.kind == kind)
+                .map(|b| b.parameter)
+                .collect();
+            let on_curve = omega_at(curve, k);
+            // the run meets the curve's bifurcation between the cells, within one step of
+            // where the curve crosses this row
+            assert!(
+                found.iter().any(|w| on_curve.iter().any(|c| (c - w).abs() <= step)),
+                "curve {n} ({}) at k = {k}: the run finds {found:?}, the curve crosses at {on_curve:?}",
+                curve.kind
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked >= 2, "only {checked} crossings checked");
+}
+
+#[test]
+fn curves_do_not_depend_on_the_thread_count() {
+    let p = AtlasParams {
+        k_points: 4,
+        omega_points: 8,
+        ..small()
+    };
+    let rows = atlas::merge(vec![
+        atlas::compute_shard(&p, atlas::Shard::WHOLE, &Silent).unwrap()
+    ])
+    .unwrap();
+    let two = atlas::with_curves(rows.clone(), &Silent).unwrap();
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap()
+        .install(|| atlas::with_curves(rows, &Silent).unwrap());
+    assert_eq!(
+        serde_json::to_string(&one.curves).unwrap(),
+        serde_json::to_string(&two.curves).unwrap()
+    );
+    assert!(!two.curves.unwrap().curves.is_empty());
+}
