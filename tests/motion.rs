@@ -299,3 +299,56 @@ fn bad_options_are_refused_naming_them() {
     })
     .contains("segments"));
 }
+
+#[test]
+fn the_command_line_classifies_as_the_library_does_and_refuses_bad_options() {
+    // Figure 5's band at k = 10k₁, N = 10, with the book's options (the atlas's)
+    let f = problems::Forced {
+        k_over_k1: 10.0,
+        ..problems::figure4(10)
+    };
+    let sim = Simulator::new(f.model().unwrap()).unwrap();
+    let book = MotionOptions::for_model(sim.model(), 300);
+    let m = classify(&sim, &sim.rest(), &book, &Silent).unwrap();
+    let args = [
+        "motion",
+        "--modes",
+        "10",
+        "--zeta1",
+        "0.01",
+        "--omega",
+        "2",
+        "--stop-stiffness",
+        "10",
+        "--json",
+    ];
+    let (code, out, err) = crate::common::cli::cantilever(&args);
+    assert_eq!(code, 0, "{err}");
+    let doc: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(doc["class"], "quasi-periodic");
+    // the same computation: the same numbers to the bit
+    assert_eq!(doc["exponents"][0].as_f64().unwrap(), m.exponents[0]);
+    assert_eq!(doc["half_widths"][1].as_f64().unwrap(), m.half_widths[1]);
+    assert_eq!(doc["rotation"]["turns"].as_f64().unwrap(), m.rotation.turns);
+    assert_eq!(
+        doc["options"]["resolution"].as_f64().unwrap(),
+        book.resolution
+    );
+    // bad options: exit 2 and one line naming the flag
+    for (flag, value) in [
+        ("--transient", "1e9"),
+        ("--segment-periods", "0"),
+        ("--segments", "1"),
+        ("--iterates", "2000000"),
+        ("--resolution", "-1"),
+    ] {
+        let mut a: Vec<&str> = args[..9].to_vec();
+        a.extend([flag, value]);
+        let (code, _, err) = crate::common::cli::cantilever(&a);
+        assert_eq!(code, 2, "{flag} {value}: {err}");
+        assert!(
+            err.contains(flag) && err.lines().count() == 1,
+            "{flag}: {err}"
+        );
+    }
+}

@@ -60,6 +60,35 @@ pub struct MotionOptions {
     pub resolution: f64,
 }
 
+/// The most forcing periods any part of a classification may ask for (transient, each
+/// segment, the iterates): 1e8 periods is ~20 min at N = 10; more is no longer a
+/// classification but a hang.
+pub const MAX_PERIODS: u64 = 100_000_000;
+
+/// The most iterates recorded (each one state kept in memory).
+pub const MAX_ITERATES: usize = 1_000_000;
+
+impl MotionOptions {
+    /// The book's classification (the atlas's) of a motion of `model` after `transient`
+    /// periods: 20 segments of 50 periods for λ₁ and λ₂ (measured on Figure 5's
+    /// quasi-periodic band at N = 10: λ₁'s interval is ±0.004–0.006 per unit time), 256
+    /// iterates for a period up to 64 and the rotation number, and a resolution ε of a
+    /// quarter of mode 1's free decay rate C₁₁/2 = ζ₁ω₁ (0.0088 per unit time at
+    /// ζ₁ = 0.01): an exponent within ε of zero is four times slower than any decay of the
+    /// beam without the stop, and a λ₁ interval wider than 2ε cannot tell a torus from weak
+    /// chaos.
+    pub fn for_model(model: &crate::model::galerkin::GalerkinModel, transient: u64) -> Self {
+        Self {
+            transient,
+            segments: 20,
+            periods: 50,
+            iterates: 256,
+            longest_period: 64,
+            resolution: model.damping()[0] / 2.0 / 4.0,
+        }
+    }
+}
+
 /// The class of a motion.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -242,6 +271,21 @@ pub fn classify<M: PeriodMap + ?Sized>(
     let bad = |name: &str, got: String, allowed: &str| -> Error {
         crate::error::ParameterError::new(name, got, allowed).into()
     };
+    for (name, value) in [
+        ("transient", options.transient),
+        ("periods", options.periods),
+    ] {
+        if value > MAX_PERIODS {
+            return Err(bad(name, value.to_string(), "at most 1e8 forcing periods"));
+        }
+    }
+    if options.iterates > MAX_ITERATES {
+        return Err(bad(
+            "iterates",
+            options.iterates.to_string(),
+            "at most 1000000 (each is kept in memory)",
+        ));
+    }
     if options.longest_period == 0
         || options.iterates < 4
         || (options.iterates as u64) < options.longest_period.saturating_mul(2)

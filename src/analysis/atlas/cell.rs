@@ -45,25 +45,13 @@ pub struct Found {
 }
 
 /// How the motion from rest of a cell without a stable orbit of period ≤ max_m is
-/// classified: after the atlas's transient, 20 segments of 50 periods for the two leading
-/// Lyapunov exponents (measured on Figure 5's quasi-periodic band at N = 10: λ₁'s
-/// interval is ±0.004–0.006 per unit time, ~15 ms a cell), 256 iterates for a period up to
-/// 64 and the rotation number. The resolution ε is a quarter of mode 1's free decay rate
-/// C₁₁/2 = ζ₁ω₁ (0.0088 per unit time at ζ₁ = 0.01): an exponent within ε of zero is four
-/// times slower than any decay of the beam without the stop, and a λ₁ interval wider than
-/// 2ε cannot tell a torus from weak chaos.
+/// classified: the book's classification ([`MotionOptions::for_model`]) after the atlas's
+/// transient (~15 ms a cell at N = 10).
 pub fn motion_options(
     p: &AtlasParams,
     model: &crate::model::galerkin::GalerkinModel,
 ) -> MotionOptions {
-    MotionOptions {
-        transient: p.transient,
-        segments: 20,
-        periods: 50,
-        iterates: 256,
-        longest_period: 64,
-        resolution: model.damping()[0] / 2.0 / 4.0,
-    }
+    MotionOptions::for_model(model, p.transient)
 }
 
 /// What one cell needs to know.

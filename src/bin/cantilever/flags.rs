@@ -4,13 +4,24 @@
 
 use clap::CommandFactory;
 
-/// Keywords whose flag has another name.
-const ALIASES: [(&str, &str); 4] = [
-    ("start", "initial-state"),
-    ("profile", "initial-profile"),
+/// Keywords whose flag has another name: (the commands it applies to, none for all;
+/// keyword; flag).
+const ALIASES: [(&[&str], &str, &str); 5] = [
+    (&[], "start", "initial-state"),
+    (&[], "profile", "initial-profile"),
     // `orbit` and `continue`: the transient is --periods, the window --record
-    ("transient", "periods"),
-    ("window", "record"),
+    (
+        &["orbit", "continue", "continue2", "simulate"],
+        "transient",
+        "periods",
+    ),
+    (
+        &["orbit", "continue", "continue2", "simulate"],
+        "window",
+        "record",
+    ),
+    // `motion`: the periods of each segment of the Lyapunov record
+    (&["motion"], "periods", "segment-periods"),
 ];
 
 /// `name` as `command` names it: each keyword before the first space (several joined by
@@ -30,8 +41,10 @@ pub fn flag_name(command: &str, name: &str) -> String {
         .map(|word| {
             let flag = ALIASES
                 .iter()
-                .find(|(k, _)| *k == word)
-                .map_or_else(|| word.replace('_', "-"), |(_, f)| (*f).to_string());
+                .find(|(commands, k, _)| {
+                    *k == word && (commands.is_empty() || commands.contains(&command))
+                })
+                .map_or_else(|| word.replace('_', "-"), |(_, _, f)| (*f).to_string());
             if word.starts_with("--") || !has(&flag) {
                 word.to_string()
             } else {
@@ -65,5 +78,8 @@ mod tests {
         // not a flag of the command: kept as the library says it
         assert_eq!(flag_name("atlas", "check_stride"), "check_stride");
         assert_eq!(flag_name("atlas", "k_points"), "--k-points");
+        // `motion` has its own transient, and its segments' periods
+        assert_eq!(flag_name("motion", "transient"), "--transient");
+        assert_eq!(flag_name("motion", "periods"), "--segment-periods");
     }
 }

@@ -14,6 +14,7 @@ mod continue_cmd;
 mod diff_cmd;
 mod flags;
 mod model_args;
+mod motion_cmd;
 mod orbit;
 mod out_dir;
 mod progress;
@@ -164,6 +165,22 @@ enum Command {
     Orbit {
         #[command(flatten)]
         args: orbit::OrbitArgs,
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+    },
+    /// What the motion from a start is — periodic, chaotic, quasi-periodic or undecided —
+    /// with its evidence, by the book's rule (the atlas's): the two largest Lyapunov
+    /// exponents of the stroboscopic map from the exact Jacobian (QR, 95 % intervals from
+    /// independent segments), a period up to --longest-period among the iterates that follow,
+    /// and their rotation number. Model and start as for `simulate`.
+    ///
+    /// Output fields (--json): class, exponents [λ₁, λ₂] and half_widths (per unit time),
+    /// period_m (null if none), rotation (turns, halves_differ), options (the record and ε
+    /// used), start, model, modes.
+    Motion {
+        #[command(flatten)]
+        args: motion_cmd::MotionArgs,
         /// Print JSON.
         #[arg(long)]
         json: bool,
@@ -431,6 +448,7 @@ impl Command {
             Command::Cite { .. } => "cite",
             Command::ModesNeeded { .. } => "modes-needed",
             Command::Orbit { .. } => "orbit",
+            Command::Motion { .. } => "motion",
             Command::Continue { .. } => "continue",
             Command::Continue2 { .. } => "continue2",
             Command::Atlas { .. } => "atlas",
@@ -508,6 +526,16 @@ fn run(cli: Cli) -> Result<(), Failure> {
             zeta1,
             json,
         } => modes_needed_command(stop_stiffness, tolerance, zeta1, json),
+        Command::Motion { args, json } => {
+            let report = motion_cmd::run(&args)?;
+            if json {
+                let doc = serde_json::to_value(&report).unwrap_or_default();
+                outln!("{}", json_text("motion", doc));
+            } else {
+                emit(&motion_cmd::to_text(&report));
+            }
+            Ok(())
+        }
         Command::Orbit { args, json } => {
             let report = orbit::run(&args)?;
             if json {

@@ -162,7 +162,8 @@ pub fn key_numbers(k: &mut KeyNumbers, d: &AtlasData, c: &BoundaryCurves) {
     k.integer("codimension-two points on the curves", n as i64);
 }
 
-/// One row per curve: kind, orbit, seed, extent, edges it accounts for, residuals, ends.
+/// One row per curve: kind and orbit, extent, edges it accounts for, codimension-two points,
+/// residuals, ends.
 pub fn table(d: &AtlasData, c: &BoundaryCurves) -> String {
     let edges = curves::edges(d, c);
     let rows: Vec<Vec<String>> = c
@@ -191,15 +192,12 @@ pub fn table(d: &AtlasData, c: &BoundaryCurves) -> String {
                 }
             };
             vec![
-                (i + 1).to_string(),
-                cv.kind.clone(),
-                label(Some(cv.orbit)),
+                format!("{} {} of {}", i + 1, cv.kind, label(Some(cv.orbit))),
                 format!("{:.2}–{:.2}", w0, w1),
                 format!("{}–{}", pretty(k0, 3), pretty(k1, 3)),
-                cv.points.len().to_string(),
                 accounted.to_string(),
                 cv.meetings.len().to_string(),
-                format!("{:.0e} / {:.0e}", cv.residuals.0, cv.residuals.1),
+                format!("{:.0e}, {:.0e}", cv.residuals.0, cv.residuals.1),
                 if cv.ends.0 == cv.ends.1 {
                     ends(&cv.ends.0).to_string()
                 } else {
@@ -211,14 +209,11 @@ pub fn table(d: &AtlasData, c: &BoundaryCurves) -> String {
     markdown_table(
         &[
             "curve",
-            "kind",
-            "orbit (m,n)",
             "$\\omega/(\\beta_1^-)^2$",
             "$k/k_1$",
-            "points",
             "edges within a step",
             "codim-2 points",
-            "residuals: orbit / test",
+            "residuals: orbit, test",
             "ends",
         ],
         &rows,

@@ -13,7 +13,7 @@ use plotters::prelude::*;
 const NONE: RGBColor = RGBColor(190, 190, 190);
 
 /// Height of a panel's key strip.
-const KEY_HEIGHT: u32 = 130;
+const KEY_HEIGHT: u32 = 160;
 
 /// One map: a caption, the colour of a cell, the key, and whether the boundary curves are
 /// drawn over it.
