@@ -143,20 +143,10 @@ pub fn key_numbers(k: &mut KeyNumbers, d: &AtlasData, c: &BoundaryCurves) {
                 label(Some(cv.orbit)),
                 m.meets
             );
-            k.cited(
-                format!("{name}: omega"),
-                m.omega.0,
-                digits(m.omega.0, m.omega.1),
-                Uncertainty::new(m.omega.1, bracket),
-                "(β₁⁻)²",
-            );
-            k.cited(
-                format!("{name}: k"),
-                m.k_over_k1.0,
-                digits(m.k_over_k1.0, m.k_over_k1.1),
-                Uncertainty::new(m.k_over_k1.1, bracket),
-                "k₁",
-            );
+            for (what, (x, half), unit) in [("omega", m.omega, "(β₁⁻)²"), ("k", m.k_over_k1, "k₁")] {
+                let bracketed = Uncertainty::new(half, bracket);
+                k.cited(format!("{name}: {what}"), x, digits(x, half), bracketed, unit);
+            }
         }
     }
     k.integer("codimension-two points on the curves", n as i64);
