@@ -172,13 +172,13 @@ pub fn table(d: &AtlasData, c: &BoundaryCurves) -> String {
             let accounted = edges.iter().filter(|e| e.curve.map(|x| x.0) == Some(i)).count();
             let ends = |e: &str| {
                 if e.starts_with("left") {
-                    "edge of the map"
+                    "map edge"
                 } else if e.starts_with("closed") {
                     "closed"
                 } else if e.starts_with("corrector") {
-                    "corrector failed"
+                    "stalled"
                 } else {
-                    "points exhausted"
+                    "point cap"
                 }
             };
             vec![
