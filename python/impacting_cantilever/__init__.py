@@ -14,22 +14,37 @@ number here is computed by the same code as the ``cantilever`` command line, bit
 Units (the paper's §5): time of the non-dimensional beam (EI = ρA = L = 1); stop stiffness k
 in units of k₁ = (β₁⁻)⁴ ≈ 12.36; forcing frequency ω in units of (β₁⁻)² ≈ 3.516; lengths in
 units of the free tip amplitude at resonance. Each kind of failure raises its own class
-(:mod:`impacting_cantilever.errors`): bad input a ``ParameterError`` (also a ``ValueError``)
-with the library's one-line message (the parameter, what was given, what is allowed); no
-period a ``NoPeriodError``; Newton's failure a ``NotConvergedError``; and so on.
+(:mod:`impacting_cantilever.errors`, the main ones also here): bad input a
+``ParameterError`` (also a ``ValueError``) with the library's one-line message (the
+parameter, what was given, what is allowed); no period a ``NoPeriodError``; Newton's
+failure a ``NotConvergedError`` (both a ``NoOrbitError``); and so on. ``sweep`` finds the
+orbits over a parameter's values in one call, a failure per value recorded, not raised.
 """
 
 from __future__ import annotations
 
 from . import _core, atlas, citation, errors, problems, scenes
 from ._api import (
-    Progress,
     continue_branch,
     continue_curve,
     energetic_restitution,
     find_orbit,
     modes_needed,
     simulate,
+    sweep,
+)
+from ._progress import Progress
+from ._sweep import Failure, Sweep
+from ._units import in_free_units
+from .errors import (
+    CancelledError,
+    CantileverError,
+    ChatterError,
+    NoOrbitError,
+    NoPeriodError,
+    NotConvergedError,
+    ParameterError,
+    UnsupportedError,
 )
 from ._core import __version__
 from ._models import Model, compliant, oscillator, replace, rigid
@@ -60,9 +75,11 @@ __all__ = [
     "rigid",
     "oscillator",
     "replace",
+    "in_free_units",
     "problems",
     "simulate",
     "find_orbit",
+    "sweep",
     "continue_branch",
     "continue_curve",
     "energetic_restitution",
@@ -84,4 +101,14 @@ __all__ = [
     "EnergeticRestitution",
     "ModesNeeded",
     "Study",
+    "Sweep",
+    "Failure",
+    "CantileverError",
+    "ParameterError",
+    "NoOrbitError",
+    "NoPeriodError",
+    "NotConvergedError",
+    "ChatterError",
+    "UnsupportedError",
+    "CancelledError",
 ]

@@ -1,26 +1,30 @@
-"""The computations: ``simulate``, ``find_orbit``, ``continue_branch``, ``continue_curve``,
-``energetic_restitution`` and ``modes_needed``. Each is one call of the Rust library, run
-with the interpreter released (other Python threads go on); a progress callback
-``progress(what, done, total)`` is called about ten times a second where given (``total``
-is 0 when it is not known in advance). Ctrl-C, or a callback that raises, stops every
-long call within a forcing period of a run or a cell of an atlas (measured: under 0.05 s)
-and raises that exception; the partial work is dropped.
+"""The computations: ``simulate``, ``find_orbit``, ``sweep``, ``continue_branch``,
+``continue_curve``, ``energetic_restitution`` and ``modes_needed``. Each is one call of the
+Rust library, run with the interpreter released (other Python threads go on); ``progress=``
+takes a callback ``progress(what, done, total)``, called about ten times a second (``total``
+is 0 when it is not known in advance), or a tqdm bar. Ctrl-C, or a callback that raises,
+stops every long call within a forcing period of a run or a cell of an atlas (measured:
+under 0.05 s) and raises that exception; the partial work is dropped. ``threads=``, where a
+call has it, caps the threads its parallel work uses (default: one per core).
 
 Failures raise the class of their kind (:mod:`impacting_cantilever.errors`):
-``ParameterError`` (also a ``ValueError``) for bad input, ``NoPeriodError``,
-``NotConvergedError``, ``ChatterError``, ``UnsupportedError``, ...
+``ParameterError`` (also a ``ValueError``) for bad input, ``NoPeriodError`` and
+``NotConvergedError`` (both a ``NoOrbitError``), ``ChatterError``, ``UnsupportedError``, ...;
+``find_orbit`` and ``energetic_restitution`` return a :class:`Failure` instead with
+``raise_on_failure=False``, and ``sweep`` records one per value.
 """
 
 from __future__ import annotations
 
-from typing import Any, Callable, Literal, Optional
+from typing import Any, Literal, Optional, Sequence, Union
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import _core
-from .errors import ParameterError
-from ._models import Model
+from .errors import COMPUTATION_FAILURES, ParameterError
+from ._models import Model, replace
+from ._progress import Progress, callback
 from ._results import (
     Continuation,
     Curve,
@@ -34,9 +38,7 @@ from ._results import (
     _branch,
     _curve,
 )
-
-#: ``progress(what, done, total)``.
-Progress = Optional[Callable[[str, int, int], object]]
+from ._sweep import Failure, Sweep, _failure, _sweep
 
 
 def _state(start: Optional[ArrayLike]) -> Optional[NDArray[np.float64]]:
@@ -109,7 +111,7 @@ def simulate(
         dense_per_period,
         periodicity_tolerance,
         max_period,
-        progress,
+        callback(progress),
         energy,
     )
     events = d["events"]
@@ -134,7 +136,8 @@ def find_orbit(
     period_tolerance: float = 1e-3,
     max_iterations: int = 40,
     restitution: bool = False,
-) -> Orbit:
+    raise_on_failure: bool = True,
+) -> Union[Orbit, Failure]:
     """The periodic orbit the model settles on from ``start`` (rest by default): the
     transient, the period m read from the strobe of a window (or given), Newton shooting
     with the exact monodromy, the Floquet multipliers, and r_E (eq 39) if asked for.
@@ -150,14 +153,80 @@ def find_orbit(
         period_tolerance: how near the strobe must repeat for m to be taken (relative).
         max_iterations: Newton steps allowed (1 to 1000).
         restitution: also r_E (eq 39) over one period (compliant model only).
+        raise_on_failure: False: a failure of the computation itself (no period, Newton,
+            chatter) is returned as a :class:`Failure` (``success`` False, ``status`` the
+            class's name, ``message``) instead of raised, as scipy's solvers return theirs.
 
     Raises:
         ParameterError: bad input. NoPeriodError: no period within the window.
-        NotConvergedError: Newton did not converge (``.residual``). UnsupportedError: r_E of
-        the rigid model. ChatterError: an orbit that chatters or sticks (rigid model).
+        NotConvergedError: Newton did not converge (``.residual``); both are a
+        ``NoOrbitError``. UnsupportedError: r_E of the rigid model. ChatterError: an orbit
+        that chatters or sticks (rigid model).
     """
-    d = _core.find_orbit(
-        model,
+    try:
+        d = _core.find_orbit(
+            model,
+            _state(start),
+            seed,
+            transient,
+            window,
+            period,
+            period_tolerance,
+            max_iterations,
+            restitution,
+        )
+    except COMPUTATION_FAILURES as e:
+        if raise_on_failure:
+            raise
+        return _failure(e)
+    return Orbit(**d)
+
+
+def sweep(
+    model: Model,
+    parameter: str,
+    values: Sequence[float],
+    *,
+    start: Optional[ArrayLike] = None,
+    seed: Optional[int] = None,
+    transient: int = 1000,
+    window: int = 65,
+    period: Optional[int] = None,
+    period_tolerance: float = 1e-3,
+    max_iterations: int = 40,
+    restitution: bool = False,
+    progress: Progress = None,
+    threads: Optional[int] = None,
+) -> Sweep:
+    """:func:`find_orbit` at each value of one parameter of the model, from the same start,
+    in one call: the values run in parallel, each orbit is the one ``find_orbit`` finds
+    for that model alone (bit for bit), and a value whose orbit fails (no period, Newton,
+    chatter) has its status and message instead of stopping the sweep.
+
+    Args:
+        model: the model whose ``parameter`` is swept (any model).
+        parameter: a keyword of the model's ``parameters()`` (``"stop_stiffness"``,
+            ``"omega"``, ``"gap"``, ``"zeta1"``, ``"restitution"``, …).
+        values: its values; every one is checked before any work (a bad one raises
+            ``ParameterError``).
+        start, seed, transient, window, period, period_tolerance, max_iterations,
+            restitution: as in :func:`find_orbit`, for every value.
+        progress: ``progress("sweep: orbits", values done, len(values))``, or a tqdm bar.
+        threads: threads the values run on (1 to 1024; default one per core).
+
+    Returns:
+        A :class:`Sweep`: arrays of m, n, stability, spectral radius, residual, r_E and state
+        per value, ``found`` and ``status`` per value, and each value's
+        :class:`Orbit` or :class:`Failure`; ``to_pandas()`` for a table.
+    """
+    xs = np.asarray(values, dtype=np.float64)
+    if xs.ndim != 1:
+        raise ParameterError(
+            f"invalid values: got an array of shape {xs.shape}; allowed: a sequence of numbers"
+        )
+    models = [replace(model, **{parameter: float(x)}) for x in xs]
+    found = _core.find_orbits(
+        models,
         _state(start),
         seed,
         transient,
@@ -166,8 +235,13 @@ def find_orbit(
         period_tolerance,
         max_iterations,
         restitution,
+        callback(progress),
+        threads,
     )
-    return Orbit(**d)
+    entries = [
+        Orbit(**f) if isinstance(f, dict) else Failure(f[0], f[1], f[2]) for f in found
+    ]
+    return _sweep(parameter, xs, entries, model.modes)
 
 
 def continue_branch(
@@ -215,7 +289,7 @@ def continue_branch(
         transient,
         window,
         period,
-        progress,
+        callback(progress),
     )
     return Continuation(
         parameter=d["parameter"],
@@ -242,6 +316,7 @@ def continue_curve(
     window: int = 65,
     period: Optional[int] = None,
     progress: Progress = None,
+    threads: Optional[int] = None,
 ) -> Curve:
     """The curve of folds (a multiplier at +1), period doublings (at −1), grazings (the
     tip's extremum nearest the stop touches it) or Neimark–Sacker points (a complex pair of
@@ -260,6 +335,7 @@ def continue_curve(
         max_step: largest arclength step (1e-4 to 0.2); max_points: each way (2 to 20 000).
         start, seed, transient, window, period: the start orbit, as in :func:`find_orbit`.
         progress: ``progress("curve: orbits", models built, 0)``.
+        threads: threads for the curve's two directions (1 to 1024; default one per core).
 
     Raises:
         NotConvergedError: no point of the curve near the start orbit. UnsupportedError: the
@@ -285,7 +361,8 @@ def continue_curve(
         transient,
         window,
         period,
-        progress,
+        callback(progress),
+        threads,
     )
     return _curve(d)
 
@@ -301,18 +378,28 @@ def energetic_restitution(
     seed: Optional[int] = None,
     transient: int = 1000,
     window: int = 40,
-) -> EnergeticRestitution:
+    raise_on_failure: bool = True,
+) -> Union[EnergeticRestitution, Failure]:
     """The energetic coefficient of restitution r_E (eq 39) of the orbit the compliant model
     settles on: ``transient`` periods, the orbit labelled over ``window`` periods (2 to
-    10 000), and if periodic, the work of the contact force on mode 1 over one period of it
-    (the Figure 6 computation)."""
-    d = _core.energetic_restitution(model, _state(start), seed, transient, window)
-    kind = d["kind"]
-    m = n = None
-    if isinstance(kind, dict) and "Periodic" in kind:
-        m, n = kind["Periodic"]["m"], kind["Periodic"]["n"]
+    10 000), and the work of the contact force on mode 1 over one period of it (the
+    Figure 6 computation).
+
+    Raises:
+        NoPeriodError: the motion has no period of at most 32 forcing periods in the window
+            (r_E is defined on a periodic orbit) — returned as a :class:`Failure` instead
+            with ``raise_on_failure=False``, as :func:`find_orbit` does.
+        UnsupportedError: the rigid-impact model. ParameterError: bad input.
+    """
+    try:
+        d = _core.energetic_restitution(model, _state(start), seed, transient, window)
+    except COMPUTATION_FAILURES as e:
+        if raise_on_failure:
+            raise
+        return _failure(e)
+    m, n = d["kind"]["Periodic"]["m"], d["kind"]["Periodic"]["n"]
     return EnergeticRestitution(
-        label=f"({m},{n})" if m is not None else "not periodic",
+        label=f"({m},{n})",
         period_m=m,
         impacts_n=n,
         residual=d["residual"],
@@ -326,13 +413,18 @@ def energetic_restitution(
 
 
 def modes_needed(
-    stop_stiffness: float, tolerance: float = 1e-3, zeta1: float = 0.01
+    stop_stiffness: float,
+    tolerance: float = 1e-3,
+    zeta1: float = 0.01,
+    *,
+    threads: Optional[int] = None,
 ) -> ModesNeeded:
     """How many Galerkin modes N resolve a stop of stiffness k/k₁ (1e-3 to 1e6) to a relative
     accuracy (1e-9 to 0.5): one contact simulated for N = 1 … 200, each observable (contact
     duration, exit tip velocity, first-mode velocity after) extrapolated to N → ∞ —
-    ``cantilever modes-needed``. Takes about a second."""
-    d = _core.modes_needed(stop_stiffness, tolerance, zeta1)
+    ``cantilever modes-needed``. Takes about a second; ``threads`` (1 to 1024) caps the
+    threads of the scan (default one per core)."""
+    d = _core.modes_needed(stop_stiffness, tolerance, zeta1, threads)
     needed = d["needed"]
     scanned = needed.get("Scanned") if isinstance(needed, dict) else None
     beyond = needed.get("Beyond") if isinstance(needed, dict) else None

@@ -119,6 +119,19 @@ def find_orbit(
     max_iterations: int,
     restitution: bool,
 ) -> dict[str, Any]: ...
+def find_orbits(
+    models: list[Model],
+    start: Optional[NDArray[np.float64]],
+    seed: Optional[int],
+    transient: int,
+    window: int,
+    period: Optional[int],
+    period_tolerance: float,
+    max_iterations: int,
+    restitution: bool,
+    progress: _Progress,
+    threads: Optional[int],
+) -> list[Union[dict[str, Any], tuple[str, str, Optional[float]]]]: ...
 def continue_branch(
     model: Model,
     parameter: str,
@@ -148,6 +161,7 @@ def continue_curve(
     window: int,
     period: Optional[int],
     progress: _Progress,
+    threads: Optional[int] = None,
 ) -> dict[str, Any]: ...
 def energetic_restitution(
     model: Model,
@@ -156,7 +170,9 @@ def energetic_restitution(
     transient: int,
     window: int,
 ) -> dict[str, Any]: ...
-def modes_needed(stop_stiffness: float, tolerance: float, zeta1: float) -> dict[str, Any]: ...
+def modes_needed(
+    stop_stiffness: float, tolerance: float, zeta1: float, threads: Optional[int] = None
+) -> dict[str, Any]: ...
 def time_rust(
     model: Model,
     what: str,
@@ -169,13 +185,26 @@ def time_rust(
 
 def scene_list() -> list[dict[str, Any]]: ...
 def scene_run(
-    name: str, resolution: str = "book", out: Optional[str] = None, progress: _Progress = None
+    name: str,
+    resolution: str = "book",
+    out: Optional[str] = None,
+    progress: _Progress = None,
+    threads: Optional[int] = None,
 ) -> SceneRun: ...
 def citations() -> dict[str, Any]: ...
 def cite(scene: str, key: Optional[str] = None) -> str: ...
 def atlas_params(resolution: str) -> str: ...
-def atlas_shard(params: str, index: int, count: int, progress: _Progress = None) -> str: ...
+def atlas_shard(
+    params: str,
+    index: int,
+    count: int,
+    progress: _Progress = None,
+    threads: Optional[int] = None,
+) -> str: ...
 def atlas_merge(
-    shards: list[str], out: Optional[str] = None, progress: _Progress = None
+    shards: list[str],
+    out: Optional[str] = None,
+    progress: _Progress = None,
+    threads: Optional[int] = None,
 ) -> SceneRun: ...
 def atlas_build() -> str: ...

@@ -7,8 +7,11 @@ stop stiffness in units of k₁ = (β₁⁻)⁴ and frequencies in units of (β�
 
 from __future__ import annotations
 
+import inspect
+import re
+import textwrap
 from dataclasses import dataclass, field, fields
-from typing import Any, Optional
+from typing import Any, ClassVar, Optional
 
 import numpy as np
 from numpy.typing import NDArray
@@ -35,11 +38,60 @@ def _same(a: Any, b: Any) -> bool:
     return bool(a == b)
 
 
+#: The units of every result, as ``help()`` shows them under each result's fields.
+UNITS = textwrap.fill(
+    "Units: time of the non-dimensional beam (EI = ρA = L = 1; the forcing period is "
+    "T = 2π/ω); lengths (tip, d₀, modal coordinates) in units of the free tip amplitude at "
+    "resonance, velocities in those lengths per unit time — to compare with the book's key "
+    "numbers, which are in units of A_free(ω), the free tip amplitude at the forcing "
+    "frequency, use in_free_units(); k in units of k₁ = (β₁⁻)⁴, ω in units of (β₁⁻)². "
+    "The oscillator's results are in its own units.",
+    88,
+)
+
+
+def _field_docs(cls: type) -> list[tuple[str, str]]:
+    """The ``#:`` comment above each field of a class's body (the form Sphinx reads), as
+    (name, text): what ``help()`` shows once they are in the docstring."""
+    try:
+        lines, _ = inspect.getsourcelines(cls)
+    except (OSError, TypeError):  # no source (a frozen build): the docstring stays as it is
+        return []
+    docs, comment = [], []
+    for line in lines[1:]:
+        text = line.strip()
+        if text.startswith("#:"):
+            comment.append(text[2:].strip())
+            continue
+        m = re.match(r"([A-Za-z_]\w*)\s*:", text)
+        if m and comment and line.startswith("    ") and not line.startswith("     "):
+            docs.append((m.group(1), " ".join(comment)))
+        comment = []
+    return docs
+
+
 class _Result:
     """A result's common behaviour: its arrays are read-only (a frozen result cannot be
     changed through them), and two results are equal when every field is, arrays compared
     element by element (the generated ``==`` of a dataclass would compare arrays to an
-    array of truth values and raise); a measurement such as the wall time is not compared."""
+    array of truth values and raise); a measurement such as the wall time is not compared.
+    Each field's ``#:`` comment (its meaning and unit) is appended to the class's docstring
+    under "Attributes", so that ``help()`` shows it."""
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        docs = _field_docs(cls)
+        if docs:
+            wrap = lambda t: textwrap.fill(  # noqa: E731
+                t, 88, initial_indent="        ", subsequent_indent="        "
+            )
+            body = "\n".join(f"    {name}:\n{wrap(text)}" for name, text in docs)
+            cls.__doc__ = (
+                f"{inspect.cleandoc(cls.__doc__ or '')}\n\nAttributes:\n{body}\n\n{UNITS}\n"
+            )
+
+    #: True: a result is a success (a :class:`~impacting_cantilever.Failure` is not).
+    success: ClassVar[bool] = True
 
     def __post_init__(self) -> None:
         for f in fields(self):  # type: ignore[arg-type]
@@ -427,7 +479,7 @@ def _curve(d: dict[str, Any]) -> Curve:
 class EnergeticRestitution(_Result):
     """r_E (eq 39) of the orbit a run settles on, with each contact's r̃_E (eq 38)."""
 
-    #: The orbit's (m, n) label, or "not periodic".
+    #: The orbit's (m, n) label.
     label: str
     period_m: Optional[int]
     impacts_n: Optional[int]

@@ -8,12 +8,10 @@ shards from Python and from the command line merge together when they come from 
 build). Fan them out with any executor::
 
     import concurrent.futures as cf
-    import multiprocessing
     import impacting_cantilever as ic
 
     p = ic.atlas.params("test")                       # 9 × 9; "book" is 128 × 128
-    spawn = multiprocessing.get_context("spawn")      # not fork: see below
-    with cf.ProcessPoolExecutor(mp_context=spawn) as pool:
+    with cf.ProcessPoolExecutor() as pool:            # any start method, fork included
         shards = list(pool.map(ic.atlas.compute_shard, [p] * 4, range(4), [4] * 4))
     atlas = ic.atlas.merge(shards, out="out/atlas")   # the scene's files, as atlas-merge
 
@@ -31,9 +29,9 @@ with Dask (``client.map(ic.atlas.compute_shard, [p] * n, range(n), [n] * n)`` th
     ic.atlas.merge([open(f).read() for f in glob.glob("part-*.json")], out="out/atlas")
 
 Each shard uses every core it is given (the rows run in parallel threads, with the
-interpreter released). Start worker processes with "spawn" (or "forkserver"), not "fork":
-a process forked after the library's thread pool has started inherits the pool without its
-threads.
+interpreter released), or ``threads`` of them. Worker processes may be started by any
+method, "fork" included: each process builds its own thread pool (a forked child does not
+use its parent's, whose threads it has not inherited).
 """
 
 from __future__ import annotations
@@ -41,9 +39,10 @@ from __future__ import annotations
 import json
 import os
 from concurrent.futures import Executor
-from typing import Any, Callable, Iterable, Literal, Optional, Union
+from typing import Any, Iterable, Literal, Optional, Union
 
 from . import _core
+from ._progress import Progress, callback
 from .scenes import Scene
 
 __all__ = ["params", "compute_shard", "merge", "compute", "compute_sharded", "build"]
@@ -72,38 +71,48 @@ def compute_shard(
     params: Params,
     index: int,
     count: int,
-    progress: Optional[Callable[[str, int, int], object]] = None,
+    progress: Progress = None,
+    threads: Optional[int] = None,
 ) -> str:
     """Shard ``index`` of ``count`` (0 ≤ index < count), as JSON text: picklable, and the
-    file format of ``cantilever atlas`` (write it with ``open(path, "w").write(text)``)."""
-    return _core.atlas_shard(json.dumps(params), index, count, progress)
+    file format of ``cantilever atlas`` (write it with ``open(path, "w").write(text)``).
+    ``threads`` (1 to 1024) caps the threads its rows run on (default one per core: give
+    ``threads=1`` to each of as many worker processes as cores)."""
+    return _core.atlas_shard(json.dumps(params), index, count, callback(progress), threads)
 
 
 def merge(
     shards: Iterable[str],
     out: Union[str, os.PathLike[str], None] = None,
-    progress: Optional[Callable[[str, int, int], object]] = None,
+    progress: Progress = None,
+    threads: Optional[int] = None,
 ) -> Scene:
     """Merges the shards (JSON texts, in any order) into the atlas scene's result — key
     numbers, verdict, data, plot — tracing its boundary curves (``params["curves"]``), and
     writes its files into ``out`` if given, as ``cantilever atlas-merge`` does. Refuses
     shards of different parameters or builds, a row given twice, or a missing row."""
     path = None if out is None else os.fspath(out)
-    return Scene(_core.atlas_merge(list(shards), path, progress))
+    return Scene(_core.atlas_merge(list(shards), path, callback(progress), threads))
 
 
 def compute(
-    params: Params, progress: Optional[Callable[[str, int, int], object]] = None
+    params: Params, progress: Progress = None, threads: Optional[int] = None
 ) -> Scene:
     """The whole atlas in this process (one shard)."""
-    return merge([compute_shard(params, 0, 1, progress)], progress=progress)
+    return merge(
+        [compute_shard(params, 0, 1, progress, threads)], progress=progress, threads=threads
+    )
 
 
-def compute_sharded(params: Params, count: int, executor: Executor) -> Scene:
-    """The atlas in ``count`` shards on an executor (a ``ProcessPoolExecutor`` with the
-    "spawn" context, a Dask client's ``get_executor()``, …), merged."""
-    futures = [executor.submit(compute_shard, params, i, count) for i in range(count)]
-    return merge(f.result() for f in futures)
+def compute_sharded(
+    params: Params, count: int, executor: Executor, threads: Optional[int] = None
+) -> Scene:
+    """The atlas in ``count`` shards on an executor (a ``ProcessPoolExecutor``, a Dask
+    client's ``get_executor()``, …), each shard on ``threads`` threads, merged."""
+    futures = [
+        executor.submit(compute_shard, params, i, count, None, threads) for i in range(count)
+    ]
+    return merge((f.result() for f in futures), threads=threads)
 
 
 def build() -> str:

@@ -10,6 +10,8 @@ class                           exit status  when
 ``ParameterError``              2            a parameter out of its supported range, or an
                                              option that does not apply to the model (also a
                                              ``ValueError``)
+``NoOrbitError``                3 or 4       no periodic orbit was found: the class of the
+                                             two below
 ``NoPeriodError``               3            the motion settled on no period within the window
 ``NotConvergedError``           4            Newton or a corrector did not converge
                                              (``residual``: where it stopped, or None)
@@ -22,6 +24,12 @@ class                           exit status  when
 ``InvariantError``              1            a run broke an invariant of the exact solution
 ``NumericalError``              1            a flow could not be built, or a plot drawn
 ==============================  ===========  =================================================
+
+``find_orbit``, ``energetic_restitution`` and ``sweep`` return a
+:class:`~impacting_cantilever.Failure` (``success`` False, the class's name and the message)
+instead of raising, with ``raise_on_failure=False``, for the failures of the computation
+itself (:data:`COMPUTATION_FAILURES`); bad input, unsupported models and interruptions still
+raise.
 """
 
 from __future__ import annotations
@@ -37,11 +45,17 @@ class ParameterError(CantileverError, ValueError):
     """A parameter out of its supported range, or an option that does not apply."""
 
 
-class NoPeriodError(CantileverError):
+class NoOrbitError(CantileverError):
+    """No periodic orbit was found: the motion settled on no period
+    (:class:`NoPeriodError`), or Newton's method did not converge on one
+    (:class:`NotConvergedError`). What a sweep skips over."""
+
+
+class NoPeriodError(NoOrbitError):
     """The motion settled on no period within the window searched."""
 
 
-class NotConvergedError(CantileverError):
+class NotConvergedError(NoOrbitError):
     """An iteration did not converge; ``residual`` is where it stopped (None if not
     measured)."""
 
@@ -72,9 +86,20 @@ class NumericalError(CantileverError):
     """A region's flow could not be built, or a plot drawn."""
 
 
+#: The failures of a computation itself, which ``raise_on_failure=False`` returns as a
+#: :class:`~impacting_cantilever.Failure`: no orbit, chatter, a broken invariant, a flow
+#: that could not be built.
+COMPUTATION_FAILURES: tuple[type[CantileverError], ...] = (
+    NoOrbitError,
+    ChatterError,
+    InvariantError,
+    NumericalError,
+)
+
 __all__ = [
     "CantileverError",
     "ParameterError",
+    "NoOrbitError",
     "NoPeriodError",
     "NotConvergedError",
     "ChatterError",
@@ -83,4 +108,5 @@ __all__ = [
     "OutputError",
     "InvariantError",
     "NumericalError",
+    "COMPUTATION_FAILURES",
 ]

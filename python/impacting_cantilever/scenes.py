@@ -12,9 +12,10 @@ from __future__ import annotations
 
 import os
 from dataclasses import dataclass
-from typing import Any, Callable, Literal, Optional, Union
+from typing import Any, Literal, Optional, Union
 
 from . import _core
+from ._progress import Progress, callback
 
 __all__ = ["SceneInfo", "KeyNumber", "Scene", "available", "names", "info", "run"]
 
@@ -177,10 +178,12 @@ def run(
     resolution: Literal["book", "test"] = "book",
     *,
     out: Union[str, os.PathLike[str], None] = None,
-    progress: Optional[Callable[[str, int, int], object]] = None,
+    progress: Progress = None,
+    threads: Optional[int] = None,
 ) -> Scene:
     """Runs one scene (``cantilever scene NAME``): at the book's resolution its key numbers
-    are the ones the book publishes; the README lists each scene's time (the atlas about a
-    minute on two cores). Writes its files into ``out`` if given."""
+    are the ones the book publishes; the README lists each scene's time (the atlas about two
+    minutes on two cores). Writes its files into ``out`` if given. ``progress``: a callback
+    or a tqdm bar; ``threads`` (1 to 1024) caps its threads (default one per core)."""
     path = None if out is None else os.fspath(out)
-    return Scene(_core.scene_run(name, resolution, path, progress))
+    return Scene(_core.scene_run(name, resolution, path, callback(progress), threads))

@@ -87,6 +87,11 @@ pub fn find_orbit<'py>(
     let f: FoundOrbit = Reporter::new(None).run(py, |r| {
         library::find_orbit_reporting(&model.built, &x0, &o, r)
     })?;
+    orbit_dict(py, &f, from)
+}
+
+/// A found orbit's fields, as the Python layer's `Orbit` takes them.
+fn orbit_dict<'py>(py: Python<'py>, f: &FoundOrbit, from: String) -> Res<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("state", state(py, &f.state))?;
     d.set_item("period_m", f.period_m)?;
@@ -100,6 +105,60 @@ pub fn find_orbit<'py>(
     d.set_item("spectral_radius", f.spectral_radius())?;
     d.set_item("start", from)?;
     Ok(d)
+}
+
+/// The periodic orbit of each model from its start, in parallel (the Python layer's
+/// `sweep`): each entry the orbit's fields, or the failure's (class, message, residual).
+#[pyfunction]
+#[pyo3(signature = (models, start, seed, transient, window, period, period_tolerance, max_iterations, restitution, progress, threads))]
+#[allow(clippy::too_many_arguments)]
+pub fn find_orbits<'py>(
+    py: Python<'py>,
+    models: Vec<PyRef<'py, Model>>,
+    start: Option<PyReadonlyArray1<'py, f64>>,
+    seed: Option<u64>,
+    transient: i64,
+    window: i64,
+    period: Option<i64>,
+    period_tolerance: f64,
+    max_iterations: i64,
+    restitution: bool,
+    progress: Option<Py<PyAny>>,
+    threads: Option<i64>,
+) -> Res<Vec<Bound<'py, PyAny>>> {
+    let o = options(
+        transient,
+        window,
+        period,
+        period_tolerance,
+        max_iterations,
+        restitution,
+    )?;
+    let start = start_of(start, seed)?;
+    let mut starts = Vec::with_capacity(models.len());
+    for m in &models {
+        starts.push(m.built.start(&start).map_err(py_error)?);
+    }
+    let built: Vec<_> = models.iter().map(|m| m.built.clone()).collect();
+    let xs: Vec<_> = starts.iter().map(|(x, _)| x.clone()).collect();
+    let found = Reporter::new(progress)
+        .threads(threads)?
+        .run(py, |r| library::find_orbits(&built, &xs, &o, r))?;
+    found
+        .into_iter()
+        .zip(starts)
+        .map(|(f, (_, from))| match f {
+            Ok(f) => Ok(orbit_dict(py, &f, from)?.into_any()),
+            Err(e) => {
+                let residual = match &e {
+                    Error::NotConverged { residual, .. } => *residual,
+                    _ => None,
+                };
+                let failure = (crate::class_of(&e), e.to_string(), residual);
+                Ok(failure.into_pyobject(py)?.into_any())
+            }
+        })
+        .collect()
 }
 
 /// A branch of periodic orbits continued in k/k₁, ω/(β₁⁻)² or d₀, as `cantilever continue`
@@ -154,7 +213,7 @@ fn parameter_named(name: &str, what: &str) -> Res<Parameter> {
 /// The curve of folds, period doublings, Neimark–Sacker points or grazings in two parameters through the model's
 /// orbit (see the Python layer's `continue_curve`).
 #[pyfunction]
-#[pyo3(signature = (model, kind, parameter, second, range, second_range, max_step, max_points, start, seed, transient, window, period, progress))]
+#[pyo3(signature = (model, kind, parameter, second, range, second_range, max_step, max_points, start, seed, transient, window, period, progress, threads=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn continue_curve<'py>(
     py: Python<'py>,
@@ -172,6 +231,7 @@ pub fn continue_curve<'py>(
     window: i64,
     period: Option<i64>,
     progress: Option<Py<PyAny>>,
+    threads: Option<i64>,
 ) -> Res<Bound<'py, PyAny>> {
     let kind = match kind {
         "fold" => CurveKind::Fold,
@@ -199,7 +259,7 @@ pub fn continue_curve<'py>(
             .map_err(|_| bad("max_points", max_points, "2 to 20000"))?,
     };
     let spec = model.built.spec();
-    let doc = Reporter::new(progress).run(py, |r| {
+    let doc = Reporter::new(progress).threads(threads)?.run(py, |r| {
         let c = curve_from(spec, &start, &orbit, &o, r)?;
         serde_json::to_value(&c).map_err(|e| Error::Unsupported(e.to_string()))
     })?;
@@ -231,13 +291,15 @@ pub fn energetic_restitution<'py>(
 /// How many modes resolve a stop of stiffness k/k₁ to a relative accuracy, as
 /// `cantilever modes-needed --json` gives it.
 #[pyfunction]
+#[pyo3(signature = (stop_stiffness, tolerance, zeta1, threads=None))]
 pub fn modes_needed(
     py: Python<'_>,
     stop_stiffness: f64,
     tolerance: f64,
     zeta1: f64,
+    threads: Option<i64>,
 ) -> Res<Bound<'_, PyAny>> {
-    let doc = Reporter::new(None).run(py, |_| {
+    let doc = Reporter::new(None).threads(threads)?.run(py, |_| {
         let m = convergence::modes_needed(stop_stiffness, tolerance, zeta1)?;
         serde_json::to_value(&m).map_err(|e| Error::Unsupported(e.to_string()))
     })?;

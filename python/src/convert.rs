@@ -3,6 +3,7 @@
 
 use crate::Res;
 use impacting_cantilever::error::Error;
+use impacting_cantilever::model::ranges::THREADS;
 use impacting_cantilever::results::scene::{Progress, Task};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray2};
@@ -11,7 +12,7 @@ use pyo3::types::{PyDict, PyList};
 use pyo3::IntoPyObjectExt;
 use serde_json::Value;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 /// A JSON value as the Python object `json.loads` would give (numbers keep their exact bits:
@@ -71,6 +72,7 @@ pub fn matrix<'py, 'a, T: numpy::Element + Copy + 'a>(
 /// returns (work that can stop early stops at its next check of [`Reporter::stopped`]).
 pub struct Reporter {
     callback: Option<Py<PyAny>>,
+    threads: Option<usize>,
     error: Mutex<Option<PyErr>>,
     stopped: AtomicBool,
     last: Mutex<Option<Instant>>,
@@ -87,10 +89,21 @@ impl Reporter {
     pub fn new(callback: Option<Py<PyAny>>) -> Self {
         Self {
             callback,
+            threads: None,
             error: Mutex::new(None),
             stopped: AtomicBool::new(false),
             last: Mutex::new(None),
         }
+    }
+
+    /// The work runs on `threads` threads (None: one per core), checked against
+    /// [`THREADS`].
+    pub fn threads(mut self, threads: Option<i64>) -> Res<Self> {
+        if let Some(n) = threads {
+            let n = THREADS.check(n.into()).map_err(crate::py_error)?;
+            self.threads = Some(n as usize);
+        }
+        Ok(self)
     }
 
     /// Whether the callback raised or the user interrupted.
@@ -146,8 +159,9 @@ impl Reporter {
             std::thread::scope(|s| {
                 let (done, finished) = std::sync::mpsc::channel();
                 let this = &self;
+                let pool = pool(self.threads);
                 let worker = s.spawn(move || {
-                    let r = work(this);
+                    let r = pool.and_then(|p| p.install(|| work(this)));
                     let _ = done.send(());
                     r
                 });
@@ -186,6 +200,41 @@ impl Reporter {
         match error {
             Some(e) => Err(e),
             None => result.map_err(crate::py_error),
+        }
+    }
+}
+
+/// This process's thread pool for calls without `threads`, with the process it was built in.
+static POOL: Mutex<Option<(u32, Arc<rayon::ThreadPool>)>> = Mutex::new(None);
+
+/// The pool a call's work runs in: `threads` threads, or this process's pool of one thread
+/// per core. Never rayon's global pool: a child forked from a process whose pool was
+/// running inherits the pool's state but none of its threads, and work handed to it would
+/// wait forever (a `ProcessPoolExecutor` with the fork method on Linux). A forked child
+/// builds its own pool instead, and the parent's is left alone (not dropped: dropping
+/// would signal threads the child does not have).
+fn pool(threads: Option<usize>) -> Result<Arc<rayon::ThreadPool>, Error> {
+    let build = |n: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .map(Arc::new)
+            .map_err(|e| Error::Unsupported(format!("no thread pool of {n} threads: {e}")))
+    };
+    if let Some(n) = threads {
+        return build(n);
+    }
+    let pid = std::process::id();
+    let mut slot = POOL.lock().unwrap_or_else(|p| p.into_inner());
+    match slot.as_ref() {
+        Some((owner, p)) if *owner == pid => Ok(p.clone()),
+        _ => {
+            if let Some(inherited) = slot.take() {
+                std::mem::forget(inherited);
+            }
+            let p = build(0)?;
+            *slot = Some((pid, p.clone()));
+            Ok(p)
         }
     }
 }

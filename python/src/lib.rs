@@ -24,7 +24,7 @@ use impacting_cantilever::error::Error;
 use pyo3::prelude::*;
 
 /// The exception class of each kind of library error (in `impacting_cantilever.errors`).
-fn class_of(e: &Error) -> &'static str {
+pub(crate) fn class_of(e: &Error) -> &'static str {
     match e.kind() {
         "parameter" => "ParameterError",
         "no-period" => "NoPeriodError",
@@ -93,6 +93,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(analysis::continue_branch, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::continue_curve, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::energetic_restitution, m)?)?;
+    m.add_function(wrap_pyfunction!(analysis::find_orbits, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::modes_needed, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::time_rust, m)?)?;
     m.add_function(wrap_pyfunction!(results::scene_list, m)?)?;

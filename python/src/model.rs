@@ -348,6 +348,22 @@ impl Model {
         Ok((rebuild, (self.parameters(py)?,)))
     }
 
+    /// Equal models: the same specification (so the same parameters, and the same model
+    /// built from them); any other object is not equal.
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+        other
+            .cast::<Model>()
+            .is_ok_and(|o| o.borrow().built.spec() == self.built.spec())
+    }
+
+    /// The hash of the parameters, so that equal models hash alike (a model is immutable:
+    /// it may key a dict or sit in a set).
+    fn __hash__(&self, py: Python<'_>) -> Res<isize> {
+        let items = self.parameters(py)?.items();
+        items.sort()?;
+        pyo3::types::PyTuple::new(py, items)?.hash()
+    }
+
     fn __repr__(&self) -> String {
         let spec = self.built.spec();
         let (stop, law) = match spec.stop {

@@ -119,13 +119,14 @@ impl SceneRun {
 /// Runs scene `name` at a resolution ("book": the numbers the book publishes; "test": the
 /// tests' reduced resolution), optionally writing its files into `out`.
 #[pyfunction]
-#[pyo3(signature = (name, resolution="book", out=None, progress=None))]
+#[pyo3(signature = (name, resolution="book", out=None, progress=None, threads=None))]
 pub fn scene_run(
     py: Python<'_>,
     name: &str,
     resolution: &str,
     out: Option<PathBuf>,
     progress: Option<Py<PyAny>>,
+    threads: Option<i64>,
 ) -> Res<SceneRun> {
     let spec = scenes::find(name).map_err(py_error)?;
     let r = self::resolution(resolution)?;
@@ -138,13 +139,15 @@ pub fn scene_run(
         use impacting_cantilever::results::output_set;
         output_set::check_set("out", dir, &output_set::SCENE_FILES).map_err(py_error)?;
     }
-    let out = Reporter::new(progress).run(py, |reporter| {
-        let output = spec.run(r, reporter)?;
-        if let Some(dir) = &out {
-            scene::write(spec, &output, dir)?;
-        }
-        Ok(output)
-    })?;
+    let out = Reporter::new(progress)
+        .threads(threads)?
+        .run(py, |reporter| {
+            let output = spec.run(r, reporter)?;
+            if let Some(dir) = &out {
+                scene::write(spec, &output, dir)?;
+            }
+            Ok(output)
+        })?;
     Ok(SceneRun { spec, out })
 }
 
@@ -194,34 +197,39 @@ pub fn atlas_params(resolution: &str) -> Res<String> {
 /// Shard `index` of `count` of the atlas of `params` (JSON), as JSON text: the file
 /// `cantilever atlas --shard I/N` writes.
 #[pyfunction]
-#[pyo3(signature = (params, index, count, progress=None))]
+#[pyo3(signature = (params, index, count, progress=None, threads=None))]
 pub fn atlas_shard(
     py: Python<'_>,
     params: &str,
     index: i64,
     count: i64,
     progress: Option<Py<PyAny>>,
+    threads: Option<i64>,
 ) -> Res<String> {
     let p = params_of(params)?;
     let shard = Shard::parse(&format!("{index}/{count}")).map_err(|mut e| {
         e.name = "shard index/count".into();
         py_error(e)
     })?;
-    Reporter::new(progress).run(py, |reporter| {
-        let part = atlas::compute_shard(&p, shard, reporter)?;
-        serde_json::to_string(&part).map_err(|e| Error::Unsupported(format!("atlas shard: {e}")))
-    })
+    Reporter::new(progress)
+        .threads(threads)?
+        .run(py, |reporter| {
+            let part = atlas::compute_shard(&p, shard, reporter)?;
+            serde_json::to_string(&part)
+                .map_err(|e| Error::Unsupported(format!("atlas shard: {e}")))
+        })
 }
 
 /// Merges shards (JSON texts) into the atlas scene's output and traces its boundary curves,
 /// as `cantilever atlas-merge` does; writes its files into `out` if given.
 #[pyfunction]
-#[pyo3(signature = (shards, out=None, progress=None))]
+#[pyo3(signature = (shards, out=None, progress=None, threads=None))]
 pub fn atlas_merge(
     py: Python<'_>,
     shards: Vec<String>,
     out: Option<PathBuf>,
     progress: Option<Py<PyAny>>,
+    threads: Option<i64>,
 ) -> Res<SceneRun> {
     let parts = shards
         .iter()
@@ -230,13 +238,15 @@ pub fn atlas_merge(
         .collect::<Result<Vec<_>, _>>()
         .map_err(py_error)?;
     let spec = scenes::find(Atlas::NAME).map_err(py_error)?;
-    let out = Reporter::new(progress).run(py, |reporter| {
-        let output = self::shards::merged(parts, reporter)?;
-        if let Some(dir) = &out {
-            scene::write(spec, &output, dir)?;
-        }
-        Ok::<_, Error>(output)
-    })?;
+    let out = Reporter::new(progress)
+        .threads(threads)?
+        .run(py, |reporter| {
+            let output = self::shards::merged(parts, reporter)?;
+            if let Some(dir) = &out {
+                scene::write(spec, &output, dir)?;
+            }
+            Ok::<_, Error>(output)
+        })?;
     Ok(SceneRun { spec, out })
 }
 

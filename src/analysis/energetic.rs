@@ -230,12 +230,15 @@ pub struct OrbitCoefficient {
 pub const NO_CONTACT_FORCE: &str = "r_E (eqs 38–39) weighs the work of the compliant contact \
      force on mode 1; the rigid-impact model has no contact force — its restitution is its law";
 
-/// [`orbit_coefficient`] of a model built from its specification, the options checked.
+/// [`orbit_coefficient`] of a model built from its specification, the options checked: what
+/// a front end asks for, so a motion without a period is an error here (as it is for
+/// [`crate::analysis::find_orbit`]), not a result without a coefficient.
 ///
 /// # Errors
 /// [`Error::Parameter`] for `transient` or `window` out of range
 /// ([`orbit::TRANSIENT`], [`orbit::WINDOW`]) or a start of the wrong length;
-/// [`Error::Unsupported`] for the rigid-impact model; the run's errors.
+/// [`Error::Unsupported`] for the rigid-impact model; [`Error::NoPeriod`] when the motion
+/// has no period ≤ 32 in the window; the run's errors.
 pub fn energetic_restitution(
     model: &BuiltModel,
     x0: &DVector<f64>,
@@ -271,7 +274,17 @@ pub fn energetic_restitution_reporting(
     if progress.cancelled() {
         return Err(Error::Interrupted);
     }
-    coefficient_after(sim, &x, transient, window)
+    let found = coefficient_after(sim, &x, transient, window)?;
+    if found.kind == OrbitKind::NotPeriodic {
+        return Err(Error::NoPeriod(format!(
+            "{} settles on no period of at most 32 forcing periods within {window} periods \
+             after a transient of {transient} (best relative residual {:.1e}): r_E (eq 39) is \
+             defined on a periodic orbit; give a longer transient or window, or another start",
+            sim.name(),
+            found.residual
+        )));
+    }
+    Ok(found)
 }
 
 /// Runs `transient` periods from x0, labels the orbit over a `window` of periods, and if it

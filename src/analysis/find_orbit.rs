@@ -21,7 +21,7 @@ use crate::analysis::energetic::ContactWork;
 use crate::analysis::energetic::NO_CONTACT_FORCE;
 use crate::analysis::orbit::{detect_period_by, TRANSIENT, WINDOW};
 use crate::analysis::shooting::{self, PeriodicOrbit};
-use crate::base::progress::{Progress, Silent};
+use crate::base::progress::{CancelOnly, Progress, Silent};
 use crate::engine::built::{BuiltModel, Variant};
 use crate::engine::map::PeriodMap;
 use crate::engine::rigid::RigidImpact;
@@ -250,6 +250,45 @@ pub fn find_orbit_reporting<M: PeriodMap + EnergeticRestitution + ?Sized>(
         energetic_restitution,
         orbit,
     })
+}
+
+/// [`find_orbit`] of each model from its start, with the same options: a sweep. The models
+/// run in parallel (on the caller's rayon pool), each orbit is the one [`find_orbit`] finds
+/// for that model alone, bit for bit, whatever the thread count, and a value whose orbit
+/// fails (no period, Newton, chatter) has its error as its entry, not the sweep's. Reports
+/// a task "sweep: orbits" counted in models, and stops with [`Error::Interrupted`] when
+/// `progress` is cancelled.
+///
+/// # Errors
+/// [`Error::Parameter`] for bad options or as many starts as models not given;
+/// [`Error::Interrupted`].
+pub fn find_orbits<M: PeriodMap + EnergeticRestitution + Sync>(
+    models: &[M],
+    starts: &[DVector<f64>],
+    options: &OrbitOptions,
+    progress: &dyn Progress,
+) -> Result<Vec<Result<FoundOrbit, Error>>, Error> {
+    use rayon::prelude::*;
+    check(options)?;
+    if starts.len() != models.len() {
+        let why = format!("one per model ({})", models.len());
+        return Err(ParameterError::new("starts", starts.len(), &why).into());
+    }
+    let task = progress.task("sweep: orbits", models.len() as u64);
+    let quiet = CancelOnly(progress);
+    let found: Vec<_> = models
+        .par_iter()
+        .zip(starts)
+        .map(|(model, x)| {
+            let r = find_orbit_reporting(model, x, options, &quiet);
+            task.advance(1);
+            r
+        })
+        .collect();
+    if progress.cancelled() {
+        return Err(Error::Interrupted);
+    }
+    Ok(found)
 }
 
 fn check(o: &OrbitOptions) -> Result<(), ParameterError> {

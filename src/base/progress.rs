@@ -34,3 +34,18 @@ impl Progress for Silent {
         Box::new(Silent)
     }
 }
+
+/// Another progress's cancellation without its tasks: for work run many times over (a
+/// sweep's values), whose own tasks would flood the caller's report, but which must still
+/// stop when asked.
+#[derive(Clone, Copy)]
+pub struct CancelOnly<'a>(pub &'a dyn Progress);
+
+impl Progress for CancelOnly<'_> {
+    fn task(&self, _: &str, _: u64) -> Box<dyn Task + '_> {
+        Box::new(Silent)
+    }
+    fn cancelled(&self) -> bool {
+        self.0.cancelled()
+    }
+}

@@ -208,6 +208,16 @@ pub const MODEL_RANGES: [Range; 7] = [
     RESTITUTION,
 ];
 
+/// The threads a call's parallel work (atlas rows, curve directions, scans in N) may use.
+pub const THREADS: Count = Count {
+    name: "threads",
+    symbol: "",
+    min: 1,
+    max: 1024,
+    why: "each thread has its own stack and working set; more than the machine's cores only \
+          adds switching",
+};
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -214,8 +214,12 @@ impl RegionFlow {
         // inherit the eigenvectors' conditioning, nor through a dense solve, whose backward
         // error ε‖K⁺‖ ~ εkN would act on the flow as a spurious force (see
         // `structured_solve`)
+        let unforced = model.forcing_amplitude().iter().all(|f| *f == 0.0);
         let forced = match structured_solve(model, region, omega) {
             Some(x) => x,
+            // no force, no forced response: X = 0 even where iωI − A is singular (an
+            // undamped model at resonance, whose solve would fail)
+            None if unforced => DVector::zeros(2 * n),
             None => {
                 let mut m = a.map(|x| Complex64::new(-x, 0.0));
                 for i in 0..2 * n {

@@ -225,6 +225,9 @@ impl GalerkinModel {
         error::finite_positive("oscillator tip gain g", o.tip_gain)?;
         error::finite("oscillator gap d₀", o.gap)?;
         error::finite_non_negative("oscillator stop stiffness", o.stop_stiffness)?;
+        if o.damping == 0.0 && o.forcing != 0.0 {
+            not_at_resonance(o)?;
+        }
         let params = GalerkinParams::new(1, o.stop_stiffness)
             .with_gap(o.gap)
             .with_forcing(Forcing {
@@ -431,9 +434,83 @@ pub fn contact_eigenvalues(d: &[f64], stop_stiffness: f64) -> Vec<f64> {
         .collect()
 }
 
+/// How near an undamped oscillator's forcing frequency may come to a natural frequency,
+/// relative in ω²: the exact flow is the periodic particular solution plus the free
+/// motion, and near resonance both grow like 1/|ω² − ω_n²| while their difference stays of
+/// the order of the motion, so within 1e-6 of resonance more than six of the result's
+/// sixteen digits would cancel.
+pub const RESONANCE_SEPARATION: f64 = 1e-6;
+
+/// Refuses an undamped oscillator forced (F ≠ 0) at (or within [`RESONANCE_SEPARATION`] of) a
+/// natural frequency of its free or its contact region: there the forced response grows
+/// like t and has no periodic part, which the exact flow does not represent.
+fn not_at_resonance(o: &Oscillator) -> Result<(), ParameterError> {
+    let contact = o.stiffness + o.stop_stiffness * o.tip_gain * o.tip_gain / 4.0;
+    let regions = [("free", o.stiffness), ("in contact", contact)];
+    for (region, stiffness) in regions
+        .into_iter()
+        .take(if o.stop_stiffness > 0.0 { 2 } else { 1 })
+    {
+        let square = o.omega * o.omega;
+        if (square - stiffness).abs() <= RESONANCE_SEPARATION * stiffness {
+            return Err(ParameterError::new(
+                "oscillator forcing frequency ω",
+                error::number(o.omega),
+                &format!(
+                    "with no damping (c = 0), ω² not within {RESONANCE_SEPARATION:e} (relative) of \
+                     the natural frequency² {} ({region}): the forced response there grows \
+                     like t without a periodic part; give c > 0 or another ω",
+                    error::number(stiffness)
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_undamped_oscillator_at_resonance_is_refused_by_name() {
+        let at = |omega: f64, damping: f64, stop_stiffness: f64| {
+            GalerkinModel::oscillator(&Oscillator {
+                stiffness: 4.0,
+                damping,
+                forcing: 1.0,
+                omega,
+                tip_gain: 1.0,
+                gap: 0.5,
+                stop_stiffness,
+            })
+        };
+        let e = at(2.0, 0.0, 0.0).unwrap_err().to_string();
+        assert!(
+            e.starts_with(
+                "invalid oscillator forcing frequency ω: got 2; allowed: with no damping"
+            ),
+            "{e}"
+        );
+        assert!(e.contains("natural frequency² 4 (free)"), "{e}");
+        // in contact: k + k_s g²/4 = 4 + 12/4 = 7
+        let e = at(7f64.sqrt(), 0.0, 12.0).unwrap_err().to_string();
+        assert!(e.contains("natural frequency² 7 (in contact)"), "{e}");
+        // damped, or away from resonance: built
+        assert!(at(2.0, 0.01, 0.0).is_ok() && at(2.0 * (1.0 + 1e-6), 0.0, 0.0).is_ok());
+        assert!(at(7f64.sqrt(), 0.0, 0.0).is_ok());
+        // unforced, there is no forced response to grow
+        let free = Oscillator {
+            forcing: 0.0,
+            damping: 0.0,
+            omega: 2.0,
+            stiffness: 4.0,
+            tip_gain: 1.0,
+            gap: 0.5,
+            stop_stiffness: 0.0,
+        };
+        assert!(GalerkinModel::oscillator(&free).is_ok());
+    }
 
     #[test]
     fn contact_stiffness_is_diagonal_plus_k_times_ones() {
