@@ -1,8 +1,11 @@
 """Regenerates the measured parts of the book's chapter *From Python* (book/src/python.md):
 
-- ``book/src/python/example-output.txt``: what the chapter's worked example
-  (``book/src/python/example.py``) prints, and ``bifurcation.png``, the figure it draws
-  (when matplotlib is installed);
+- ``book/src/python/NAME-output.txt``: what each of the chapter's scripts
+  (``book/src/python/NAME.py``: the worked example, a sweep with failures, interrupted
+  calls) prints, and ``bifurcation.png``, the figure the worked example draws (when
+  matplotlib is installed); the package's tests rerun the scripts and fail when an output
+  differs from the committed one (``python/tests/test_chapter.py``), so the printed outputs
+  are always this build's;
 - ``book/src/python/error-example.txt``: the message a bad argument raises;
 - ``book/src/python/overhead.md`` and ``overhead.json``: the cost of a call from Python
   against the same call in Rust, measured now on this machine.
@@ -25,6 +28,7 @@ import json
 import os
 import platform
 import runpy
+import signal
 import statistics
 import time
 from pathlib import Path
@@ -39,37 +43,55 @@ ROOT = Path(__file__).resolve().parents[2]
 OUT = ROOT / "book" / "src" / "python"
 
 
-def error_example() -> None:
+#: The chapter's scripts (book/src/python/NAME.py), each printing what the chapter shows
+#: as NAME-output.txt: the worked example (which also draws bifurcation.png when matplotlib
+#: is installed), a sweep with failures, and interrupted long calls.
+SCRIPTS = ["example", "sweep", "interrupt"]
+
+
+def error_text() -> str:
     """The message a bad argument raises, as the chapter shows it."""
     call = "ic.compliant(3, zeta1=0, omega=2)"
     try:
         ic.compliant(3, zeta1=0, omega=2)
     except ValueError as e:
-        text = f">>> {call}\nimpacting_cantilever.errors.{type(e).__name__}: {e}\n"
-    else:
-        raise AssertionError(f"{call} was accepted")
-    (OUT / "error-example.txt").write_text(text)
+        return f">>> {call}\nimpacting_cantilever.errors.{type(e).__name__}: {e}\n"
+    raise AssertionError(f"{call} was accepted")
 
 
-def run_example() -> None:
-    """Runs the worked example in OUT (so that its figure lands there) and keeps its output."""
+def script_output(name: str, directory: Path) -> str:
+    """What book/src/python/NAME.py prints, run in ``directory`` (where its files land)."""
     buffer = io.StringIO()
     cwd = os.getcwd()
-    os.chdir(OUT)
+    os.chdir(directory)
+    # Python's Ctrl-C handler, which a process started in the background goes without (it
+    # inherits SIGINT ignored): the interrupted calls would otherwise run to their end
+    handler = signal.signal(signal.SIGINT, signal.default_int_handler)
     try:
         with contextlib.redirect_stdout(buffer):
-            runpy.run_path(str(OUT / "example.py"), run_name="__main__")
+            runpy.run_path(str(OUT / f"{name}.py"), run_name="__main__")
     finally:
+        signal.signal(signal.SIGINT, handler)
         os.chdir(cwd)
-    (OUT / "example-output.txt").write_text(buffer.getvalue())
-    print(buffer.getvalue())
+    return buffer.getvalue()
+
+
+def outputs() -> None:
+    """Writes every printed output of the chapter (and its figure) into OUT."""
+    (OUT / "error-example.txt").write_text(error_text())
+    for name in SCRIPTS:
+        text = script_output(name, OUT)
+        (OUT / f"{name}-output.txt").write_text(text)
+        print(text)
 
 
 def python_times(call: Callable[[], object]) -> tuple[float, float]:
-    """(wall time, processor time of this thread) of one call."""
-    wall, cpu = time.perf_counter(), time.thread_time()
+    """(wall time, processor time of the process) of one call: the call runs its work on a
+    worker thread while the calling thread watches for Ctrl-C, so the calling thread's own
+    time would leave the work out; the process's counts both (and nothing else runs)."""
+    wall, cpu = time.perf_counter(), time.process_time()
     call()
-    return time.perf_counter() - wall, time.thread_time() - cpu
+    return time.perf_counter() - wall, time.process_time() - cpu
 
 
 # (what the reader sees, the Python call, the Rust reference's arguments, repeats)
@@ -122,7 +144,8 @@ def measure() -> None:
         for _ in range(repeats):  # interleaved, so that a slow spell of the machine hits both
             rust += _core.time_rust(repeats=1, **reference)
             py.append(python_times(call))
-        # processor time of the calling thread (the work is single-threaded), the fastest of
+        # processor time (Rust: the calling thread, which does the work; Python: the process,
+        # whose worker thread does it — the work is single-threaded), the fastest of
         # the repeats: what the other processes on the machine disturb least
         r, p = min(c for _, c in rust), min(c for _, c in py)
         # how much the Rust call alone varies between repeats: the resolution of the overhead
@@ -146,7 +169,7 @@ def measure() -> None:
         f"Measured with {platform.python_implementation()} {platform.python_version()} and "
         f"numpy {np.__version__} on {os.cpu_count()} cores ({platform.machine()}), "
         f"impacting-cantilever {ic.__version__} (commit {ic.citation.build()['commit'][:12]}), "
-        f"{time.strftime('%Y-%m-%d', time.gmtime())}; processor time of the calling thread, the fastest of the repeated calls, Rust and Python interleaved."
+        f"{time.strftime('%Y-%m-%d', time.gmtime())}; processor time (of the thread doing the work for Rust, of the process for Python, whose call runs the work on a worker thread while the calling thread watches for Ctrl-C), the fastest of the repeated calls, Rust and Python interleaved."
     )
     table = "\n".join(
         [
@@ -174,6 +197,5 @@ def measure() -> None:
 
 
 if __name__ == "__main__":
-    error_example()
-    run_example()
+    outputs()
     measure()
