@@ -144,39 +144,47 @@ impl Reporter {
         });
     }
 
-    /// Runs `work` (given this reporter as its progress) on a worker thread with the
-    /// interpreter released, while the calling thread checks for Ctrl-C every 20 ms: Python
-    /// runs signal handlers only in its main thread, so a check from the work's own threads
-    /// would never see one. A KeyboardInterrupt or a raising callback cancels the work, which
-    /// stops at its next check of [`Progress::cancelled`] (every period of a run, every cell
-    /// of an atlas), and the exception is raised; the partial work is dropped.
+    /// Runs `work` (given this reporter as its progress) on a thread of the call's pool with
+    /// the interpreter released, while the calling thread checks for Ctrl-C every 20 ms:
+    /// Python runs signal handlers only in its main thread, so a check from the work's own
+    /// threads would never see one. A KeyboardInterrupt or a raising callback cancels the
+    /// work, which stops at its next check of [`Progress::cancelled`] (every period of a
+    /// run, every cell of an atlas), and the exception is raised; the partial work is
+    /// dropped. The pool's threads already exist (a thread started per call cost ~0.1 ms,
+    /// six times a one-period run), and parallel work inside runs on the same pool.
     pub fn run<T: Send>(
         self,
         py: Python<'_>,
         work: impl FnOnce(&Reporter) -> Result<T, Error> + Send,
     ) -> Res<T> {
-        let outcome = py.detach(|| {
-            std::thread::scope(|s| {
-                let (done, finished) = std::sync::mpsc::channel();
-                let this = &self;
-                let pool = pool(self.threads);
-                let worker = s.spawn(move || {
-                    let r = pool.and_then(|p| p.install(|| work(this)));
+        let result = py.detach(|| {
+            if rayon::current_thread_index().is_some() {
+                // called from inside a call's work (a progress callback that calls the
+                // library): run here, as this thread would otherwise wait on a job queued
+                // behind itself; the outer call's thread watches for Ctrl-C
+                return work(&self);
+            }
+            let pool = pool(self.threads)?;
+            let mut result = None;
+            let (done, finished) = std::sync::mpsc::channel();
+            let this = &self;
+            let slot = &mut result;
+            pool.in_place_scope(|s| {
+                s.spawn(move |_| {
+                    *slot = Some(work(this));
                     let _ = done.send(());
-                    r
                 });
+                // until the work is done, or has panicked (the sender dropped); the scope
+                // then waits for it and passes a panic on
                 while let Err(std::sync::mpsc::RecvTimeoutError::Timeout) =
                     finished.recv_timeout(SIGNAL_POLL)
                 {
-                    self.poll_signals();
+                    this.poll_signals();
                 }
-                worker.join()
-            })
+            });
+            result.unwrap_or_else(|| Err(Error::Unsupported("the work did not run".into())))
         });
-        match outcome {
-            Ok(result) => self.finish(result),
-            Err(panic) => std::panic::resume_unwind(panic),
-        }
+        self.finish(result)
     }
 
     /// Checks for a pending signal (Ctrl-C) from the calling thread; one stops the work.

@@ -7,6 +7,8 @@ from __future__ import annotations
 import io
 import os
 import signal
+import subprocess
+import sys
 import time
 
 import numpy as np
@@ -150,3 +152,21 @@ def test_a_child_forked_after_the_parent_computed_computes_too() -> None:
     _, status = os.waitpid(pid, 0)
     assert os.waitstatus_to_exitcode(status) == 0
     assert b"".join(chunks).decode() == expected
+
+
+def test_a_progress_callback_may_call_the_library() -> None:
+    # the callback runs on a thread of the call's pool: a call made there runs in place
+    # (queued behind itself on a one-thread pool it would wait forever) — in a child
+    # process, so that a hang fails the test instead of stopping the suite
+    code = """
+import impacting_cantilever as ic
+inner = []
+def progress(what, done, total):
+    if not inner:
+        inner.append(ic.find_orbit(ic.problems.figure4(3)).period_m)
+s = ic.sweep(ic.problems.figure4(3), "omega", [1.5, 2.0], progress=progress, threads=1)
+print(inner, s.found.tolist())
+"""
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0, p.stderr
+    assert p.stdout.strip() == "[1] [True, True]"
