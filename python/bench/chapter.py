@@ -86,9 +86,10 @@ def outputs() -> None:
 
 
 def python_times(call: Callable[[], object]) -> tuple[float, float]:
-    """(wall time, processor time of the process) of one call: the call runs its work on a
-    worker thread while the calling thread watches for Ctrl-C, so the calling thread's own
-    time would leave the work out; the process's counts both (and nothing else runs)."""
+    """(wall time, processor time of the process) of one call: a parallel call runs its
+    work on a pool thread while the calling thread watches for Ctrl-C, where the calling
+    thread's own time would leave the work out; the process's counts every thread (and
+    nothing else runs)."""
     wall, cpu = time.perf_counter(), time.process_time()
     call()
     return time.perf_counter() - wall, time.process_time() - cpu
@@ -144,8 +145,8 @@ def measure() -> None:
         for _ in range(repeats):  # interleaved, so that a slow spell of the machine hits both
             rust += _core.time_rust(repeats=1, **reference)
             py.append(python_times(call))
-        # processor time (Rust: the calling thread, which does the work; Python: the process,
-        # whose worker thread does it — the work is single-threaded), the fastest of
+        # processor time (Rust: the calling thread, which does the work; Python: the
+        # process, whatever thread does it — the work is single-threaded), the fastest of
         # the repeats: what the other processes on the machine disturb least
         r, p = min(c for _, c in rust), min(c for _, c in py)
         # how much the Rust call alone varies between repeats: the resolution of the overhead
@@ -169,7 +170,7 @@ def measure() -> None:
         f"Measured with {platform.python_implementation()} {platform.python_version()} and "
         f"numpy {np.__version__} on {os.cpu_count()} cores ({platform.machine()}), "
         f"impacting-cantilever {ic.__version__} (commit {ic.citation.build()['commit'][:12]}), "
-        f"{time.strftime('%Y-%m-%d', time.gmtime())}; processor time (of the thread doing the work for Rust, of the process for Python, whose call runs the work on a worker thread while the calling thread watches for Ctrl-C), the fastest of the repeated calls, Rust and Python interleaved."
+        f"{time.strftime('%Y-%m-%d', time.gmtime())}; processor time (for Rust, of the thread doing the work; for Python, of the whole process, since a parallel call runs its work on a pool thread while the calling thread watches for Ctrl-C), the fastest of the repeated calls, Rust and Python interleaved."
     )
     table = "\n".join(
         [
