@@ -16,6 +16,8 @@ from typing import Any, ClassVar, Optional
 import numpy as np
 from numpy.typing import NDArray
 
+from ._tables import Table, split
+
 
 def _opt(x: Optional[float], fmt: str) -> str:
     return "—" if x is None else format(x, fmt)
@@ -112,8 +114,9 @@ class _Result:
 
 
 @dataclass(frozen=True, repr=False, eq=False)
-class Events(_Result):
-    """The contact events of a recorded window (impacts, for the rigid model), in order."""
+class Events(_Result, Table):
+    """The contact events of a recorded window (impacts, for the rigid model), in order;
+    ``to_pandas()`` gives them as a table."""
 
     #: t, the time of each event (non-dimensional beam time).
     time: NDArray[np.float64]
@@ -136,6 +139,13 @@ class Events(_Result):
 
     def __len__(self) -> int:
         return len(self.time)
+
+    def _columns(self) -> dict[str, Any]:
+        c = {f: getattr(self, f) for f in ["time", "cycle", "phase", "entering", "grazing"]}
+        c["tip_velocity"] = self.tip_velocity
+        if self.outgoing_tip_velocity is not None:
+            c["outgoing_tip_velocity"] = self.outgoing_tip_velocity
+        return {**c, **split("modal_velocity", self.modal_velocities)}
 
     def __repr__(self) -> str:
         entries = int(np.count_nonzero(self.entering & ~self.grazing))
@@ -294,7 +304,7 @@ class Bifurcation(_Result):
 
 
 @dataclass(frozen=True, repr=False, eq=False)
-class Branch(_Result):
+class Branch(_Result, Table):
     """A traced branch of period-m orbits, one entry per point (arclength order)."""
 
     period_m: int
@@ -321,6 +331,10 @@ class Branch(_Result):
     end: str
     #: The branch it doubled from, if born at a period doubling.
     parent: Optional[int]
+
+    def _columns(self) -> dict[str, Any]:
+        names = ["parameter", "impacts_n", "stable", "spectral_radius", "residual", "max_tip"]
+        return {**{f: getattr(self, f) for f in names}, "grazing_distance": self.grazing_distance}
 
     def __len__(self) -> int:
         return len(self.parameter)

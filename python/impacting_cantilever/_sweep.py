@@ -12,6 +12,7 @@ from numpy.typing import NDArray
 
 from . import errors
 from ._results import Orbit, _Result
+from ._tables import Table
 
 
 @dataclass(frozen=True, repr=False, eq=False)
@@ -46,7 +47,7 @@ def _failure(e: errors.CantileverError) -> Failure:
 
 
 @dataclass(frozen=True, repr=False, eq=False)
-class Sweep(_Result):
+class Sweep(_Result, Table):
     """The periodic orbits of a model at each value of one parameter, from the same start
     (:func:`~impacting_cantilever.sweep`). Arrays have one entry per value; where a value
     failed, its numbers are NaN (0 for the integer counts) and ``status`` says why."""
@@ -84,19 +85,6 @@ class Sweep(_Result):
     def __repr__(self) -> str:
         ok = int(np.count_nonzero(self.found))
         return f"Sweep({self.parameter}: {ok} of {len(self)} values with an orbit)"
-
-    def to_pandas(self) -> Any:
-        """One row per value (the state left out): value, found, status, message, m, n,
-        stable, spectral radius, residual, r_E. Needs pandas."""
-        import pandas as pd
-
-        return pd.DataFrame(self._columns())
-
-    def to_polars(self) -> Any:
-        """:meth:`to_pandas` as a polars DataFrame. Needs polars."""
-        import polars as pl
-
-        return pl.DataFrame(self._columns())
 
     def _columns(self) -> dict[str, Any]:
         return {

@@ -98,6 +98,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(analysis::time_rust, m)?)?;
     m.add_function(wrap_pyfunction!(results::scene_list, m)?)?;
     m.add_function(wrap_pyfunction!(results::scene_run, m)?)?;
+    m.add_function(wrap_pyfunction!(results::scene_restore, m)?)?;
     m.add_function(wrap_pyfunction!(results::citations, m)?)?;
     m.add_function(wrap_pyfunction!(results::cite, m)?)?;
     m.add_function(wrap_pyfunction!(results::atlas_params, m)?)?;

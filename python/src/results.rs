@@ -105,6 +105,27 @@ impl SceneRun {
         Ok(c.to_text())
     }
 
+    /// Pickling (process pools, caches): the output as JSON text, restored by
+    /// [`scene_restore`] without computing anything again.
+    fn __reduce__<'py>(&self, py: Python<'py>) -> Res<(Bound<'py, PyAny>, (String,))> {
+        let out = &self.out;
+        let payload = serde_json::json!({
+            "scene": self.spec.name(),
+            "key_numbers": out.key_numbers.to_json(),
+            "verdict": out.verdict,
+            "data": out.data,
+            "params": out.params,
+            "svg": out.rendered.svg,
+            "table": out.rendered.table,
+            "extra_tables": out.rendered.extra_tables,
+            "provenance": out.provenance,
+        });
+        let restore = py
+            .import("impacting_cantilever._core")?
+            .getattr("scene_restore")?;
+        Ok((restore, (payload.to_string(),)))
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "SceneRun({}: {}, {} key numbers, computed by {})",
@@ -114,6 +135,50 @@ impl SceneRun {
             self.out.provenance.line()
         )
     }
+}
+
+/// A pickled scene run (the text [`SceneRun::__reduce__`] writes) restored.
+#[pyfunction]
+pub fn scene_restore(payload: &str) -> Res<SceneRun> {
+    let broken = |what: &str| bad("pickled scene", what, "the text a SceneRun pickles to");
+    let v: serde_json::Value = serde_json::from_str(payload).map_err(|e| broken(&e.to_string()))?;
+    let field = |name: &str| v.get(name).cloned().ok_or_else(|| broken(name));
+    let text = |name: &str| -> Res<String> {
+        field(name)?
+            .as_str()
+            .map(str::to_string)
+            .ok_or_else(|| broken(name))
+    };
+    let spec = scenes::find(&text("scene")?).map_err(py_error)?;
+    let key_numbers =
+        impacting_cantilever::base::report::KeyNumbers::from_json(&field("key_numbers")?)
+            .map_err(|e| broken(&e))?;
+    let mut extra_tables = Vec::new();
+    for t in field("extra_tables")?
+        .as_array()
+        .ok_or_else(|| broken("extra_tables"))?
+    {
+        let (Some(name), Some(table)) = (t[0].as_str(), t[1].as_str()) else {
+            return Err(broken("extra_tables"));
+        };
+        // a table's name is a constant of its scene's renderer: kept for the process's life
+        let name: &'static str = Box::leak(name.to_string().into_boxed_str());
+        extra_tables.push((name, table.to_string()));
+    }
+    let out = SceneOutput {
+        key_numbers,
+        verdict: serde_json::from_value(field("verdict")?).map_err(|e| broken(&e.to_string()))?,
+        data: field("data")?,
+        params: field("params")?,
+        rendered: scene::Rendered {
+            svg: text("svg")?,
+            table: text("table")?,
+            extra_tables,
+        },
+        provenance: serde_json::from_value(field("provenance")?)
+            .map_err(|e| broken(&e.to_string()))?,
+    };
+    Ok(SceneRun { spec, out })
 }
 
 /// Runs scene `name` at a resolution ("book": the numbers the book publishes; "test": the

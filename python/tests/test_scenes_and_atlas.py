@@ -94,3 +94,20 @@ def test_merge_refuses_a_missing_row_as_the_command_line_does(cli: Cli, tmp_path
         ic.atlas.merge([shard])
     (tmp_path / "part.json").write_text(shard)
     assert str(e.value) == cli.error("atlas-merge", str(tmp_path / "part.json"), "--out", str(tmp_path / "o"))
+
+
+def test_a_scene_pickles_without_computing_again(tmp_path: Path) -> None:
+    import pickle
+
+    scene = ic.scenes.run("fig4", "test")
+    back = pickle.loads(pickle.dumps(scene))
+    assert back.document() == scene.document() and back.key_numbers == scene.key_numbers
+    assert back.data_json() == scene.data_json() and back.svg == scene.svg
+    assert (back.table, back.extra_tables) == (scene.table, scene.extra_tables)
+    assert back.cite() == scene.cite()
+    scene.write(tmp_path / "a")
+    back.write(tmp_path / "b")
+    for name in ["plot.svg", "table.md", "data.json", "key_numbers.json", "verdict.json"]:
+        assert (tmp_path / "a" / name).read_bytes() == (tmp_path / "b" / name).read_bytes()
+    with pytest.raises(ic.ParameterError, match="invalid pickled scene"):
+        ic._core.scene_restore('{"scene": "fig4"}')

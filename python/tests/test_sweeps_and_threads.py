@@ -51,6 +51,13 @@ def test_a_sweep_table() -> None:
     assert isinstance(t, pd.DataFrame) and len(t) == 2
     assert list(t["omega"]) == [1.5, 2.0] and list(t["status"]) == ["ok", "ok"]
     assert list(t["period_m"]) == list(s.period_m)
+    run = ic.simulate(ic.problems.figure4(3), 100, 4)
+    events = run.events.to_pandas()
+    assert list(events["time"]) == list(run.events.time) and len(events) == len(run.events)
+    assert list(events["modal_velocity_3"]) == list(run.events.modal_velocities[:, 2])
+    branch = ic.continue_branch(ic.problems.figure4(2), "stop_stiffness", to=150, one_way=True)
+    points = branch.branches[0].to_pandas()
+    assert list(points["parameter"]) == list(branch.branches[0].parameter)
 
 
 def test_no_orbit_is_caught_and_a_bad_argument_is_not() -> None:
