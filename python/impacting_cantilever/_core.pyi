@@ -14,10 +14,11 @@ DEFAULT_RESTITUTION: float
 _Progress = Optional[Callable[[str, int, int], object]]
 
 class Model:
-    def __eq__(self, other: object) -> bool: ...
-    def __hash__(self) -> int: ...
     """A validated model: the compliant cantilever, the oscillator, or either against a
     rigid stop with a law."""
+
+    def __eq__(self, other: object) -> bool: ...
+    def __hash__(self) -> int: ...
 
     @property
     def kind(self) -> str:
