@@ -1,7 +1,8 @@
 """Every long call stops within a fraction of a second of Ctrl-C or of a progress callback
-that raises, whatever thread the work runs in: the extension checks for signals from the
-calling thread while the work runs on another, and the work stops at its next period (a
-run) or cell (an atlas). Each call below would run for several seconds to minutes; the
+that raises, whatever thread the work runs in: serial work runs on the calling thread,
+which checks for signals when the work asks whether to stop (every period), and parallel
+work runs on the call's pool while the calling thread checks; the work stops at its next
+period (a run) or cell (an atlas). Each call below would run for several seconds to minutes; the
 bound of one second on the stop leaves room for a loaded machine (measured: ≤ 0.05 s)."""
 
 from __future__ import annotations
@@ -54,6 +55,9 @@ LONG_CALLS: dict[str, Callable[[], Any]] = {
     "continue_branch": lambda: ic.continue_branch(
         ic.problems.figure4(10), "stop_stiffness", 1e6, transient=10**7
     ),
+    "sweep": lambda: ic.sweep(
+        ic.problems.figure4(10), "omega", [1.9, 2.0, 2.1], transient=10**7
+    ),
     "atlas shard": lambda: atlas.compute_shard(
         atlas.params("test", k_points=64, omega_points=64), 0, 1
     ),
@@ -79,4 +83,17 @@ def test_a_raising_callback_stops_an_atlas_shard_run_in_worker_threads() -> None
     p = atlas.params("test", k_points=64, omega_points=64)
     with pytest.raises(KeyError, match="enough"):
         atlas.compute_shard(p, 0, 1, progress=stop)
+    assert time.monotonic() - raised[0] < PROMPT
+
+
+def test_a_raising_callback_stops_a_hundred_million_periods() -> None:
+    raised: list[float] = []
+
+    def stop(what: str, done: int, total: int) -> None:
+        if done >= 10_000:
+            raised.append(time.monotonic())
+            raise KeyError("enough")
+
+    with pytest.raises(KeyError, match="enough"):
+        ic.simulate(ic.problems.figure4(10), 10**8, 1, progress=stop)
     assert time.monotonic() - raised[0] < PROMPT
