@@ -48,6 +48,7 @@ from .errors import (
 )
 from ._core import __version__
 from ._models import Model, compliant, oscillator, replace, rigid
+from ._motion import Motion, motion
 from ._results import (
     Bifurcation,
     Branch,
@@ -84,6 +85,8 @@ __all__ = [
     "continue_curve",
     "energetic_restitution",
     "modes_needed",
+    "motion",
+    "Motion",
     "scenes",
     "atlas",
     "citation",

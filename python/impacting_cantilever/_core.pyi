@@ -136,6 +136,18 @@ def find_orbits(
     progress: _Progress,
     threads: Optional[int],
 ) -> list[Union[dict[str, Any], tuple[str, str, Optional[float]]]]: ...
+def motion(
+    model: Model,
+    start: Optional[NDArray[np.float64]],
+    seed: Optional[int],
+    transient: int,
+    segments: Optional[int],
+    segment_periods: Optional[int],
+    iterates: Optional[int],
+    longest_period: Optional[int],
+    resolution: Optional[float],
+    progress: _Progress,
+) -> dict[str, Any]: ...
 def continue_branch(
     model: Model,
     parameter: str,

@@ -288,6 +288,58 @@ pub fn energetic_restitution<'py>(
     json_to_py(py, &doc)
 }
 
+/// What the motion from the start is — chaotic, quasi-periodic, periodic or undecided —
+/// with its two largest Lyapunov exponents, its period and rotation number, by the book's
+/// rule (`cantilever motion --json`: the motion's fields and the options used).
+#[pyfunction]
+#[pyo3(signature = (model, start, seed, transient, segments, segment_periods, iterates, longest_period, resolution, progress))]
+#[allow(clippy::too_many_arguments)]
+pub fn motion<'py>(
+    py: Python<'py>,
+    model: &Model,
+    start: Option<PyReadonlyArray1<'py, f64>>,
+    seed: Option<u64>,
+    transient: i64,
+    segments: Option<i64>,
+    segment_periods: Option<i64>,
+    iterates: Option<i64>,
+    longest_period: Option<i64>,
+    resolution: Option<f64>,
+    progress: Option<Py<PyAny>>,
+) -> Res<Bound<'py, PyAny>> {
+    use impacting_cantilever::analysis::motion::{classify, MotionOptions, MotionOverrides};
+    let whole =
+        |name: &str, v: i64| u64::try_from(v).map_err(|_| bad(name, v, "a whole number ≥ 0"));
+    let opt = |name: &str, v: Option<i64>| v.map(|v| whole(name, v)).transpose();
+    let changed = MotionOverrides {
+        segments: opt("segments", segments)?.map(|v| v as usize),
+        periods: opt("segment_periods", segment_periods)?,
+        iterates: opt("iterates", iterates)?.map(|v| v as usize),
+        longest_period: opt("longest_period", longest_period)?,
+        resolution,
+    };
+    let transient = whole("transient", transient)?;
+    let (x0, from) = model.start(start, seed)?;
+    let options = MotionOptions::for_model_with(model.built.galerkin(), transient, &changed);
+    let doc = Reporter::new(progress).run(py, |r| {
+        // the library's "periods" (per segment) is this function's segment_periods
+        let m = classify(&model.built, &x0, &options, r).map_err(|e| match e {
+            Error::Parameter(mut p) if p.name == "periods" => {
+                p.name = "segment_periods".into();
+                Error::Parameter(p)
+            }
+            e => e,
+        })?;
+        let mut v = serde_json::to_value(&m).map_err(|e| Error::Unsupported(e.to_string()))?;
+        v["options"] =
+            serde_json::to_value(options).map_err(|e| Error::Unsupported(e.to_string()))?;
+        Ok(v)
+    })?;
+    let d = json_to_py(py, &doc)?;
+    d.set_item("start", from)?;
+    Ok(d)
+}
+
 /// How many modes resolve a stop of stiffness k/k₁ to a relative accuracy, as
 /// `cantilever modes-needed --json` gives it.
 #[pyfunction]

@@ -94,6 +94,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(analysis::continue_curve, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::energetic_restitution, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::find_orbits, m)?)?;
+    m.add_function(wrap_pyfunction!(analysis::motion, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::modes_needed, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::time_rust, m)?)?;
     m.add_function(wrap_pyfunction!(results::scene_list, m)?)?;

@@ -238,3 +238,28 @@ def test_energetic_restitution_two_ways() -> None:
     assert settled.period_m == shot.period_m and settled.impacts_n == shot.impacts_n
     assert settled.r_E is not None and shot.energetic_restitution is not None
     assert abs(settled.r_E - shot.energetic_restitution) < 1e-9
+
+
+def test_motion_is_the_command_lines(cli: Cli) -> None:
+    # the quasi-periodic motion of Figure 4's model at k = 11.29k₁, where no orbit is found
+    m = ic.motion(ic.replace(ic.problems.figure4(10), stop_stiffness=11.29))
+    doc = cli.json("motion", "--modes", "10", "--stop-stiffness", "11.29", "--zeta1", "0.01",
+                   "--omega", "2")
+    assert m.kind == doc["class"] == "quasi-periodic"
+    assert same_bits(m.exponents, doc["exponents"]) and same_bits(m.half_widths, doc["half_widths"])
+    assert same_bits(m.rotation_number, doc["rotation"]["turns"])
+    assert m.options == doc["options"] and m.period_m is None and m.start == doc["start"]
+    # changed options are the command line's flags
+    m = ic.motion(ic.problems.figure4(3), segments=4, segment_periods=20, iterates=64,
+                  longest_period=8, transient=100)
+    doc = cli.json("motion", "--modes", "3", *FIG4, "--segments", "4", "--segment-periods",
+                   "20", "--iterates", "64", "--longest-period", "8", "--transient", "100")
+    assert m.kind == doc["class"] and m.period_m == doc["period_m"] == 1
+    assert same_bits(m.exponents, doc["exponents"]) and m.options == doc["options"]
+    # refusals are the command line's, with the keyword for the flag
+    for keyword, flag, value in [("iterates", "--iterates", 3), ("segment_periods",
+                                  "--segment-periods", 10**9)]:
+        with pytest.raises(ic.ParameterError) as e:
+            ic.motion(ic.problems.figure4(3), **{keyword: value})
+        said = cli.error("motion", "--modes", "3", *FIG4, flag, str(value))
+        assert str(e.value) == said.replace(flag, keyword)

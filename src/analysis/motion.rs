@@ -89,6 +89,41 @@ impl MotionOptions {
     }
 }
 
+/// The options a front end may change, each `None` for the book's ([`MotionOptions::for_model`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct MotionOverrides {
+    /// [`MotionOptions::segments`].
+    pub segments: Option<usize>,
+    /// [`MotionOptions::periods`].
+    pub periods: Option<u64>,
+    /// [`MotionOptions::iterates`].
+    pub iterates: Option<usize>,
+    /// [`MotionOptions::longest_period`].
+    pub longest_period: Option<u64>,
+    /// [`MotionOptions::resolution`].
+    pub resolution: Option<f64>,
+}
+
+impl MotionOptions {
+    /// The book's options for `model` after `transient` periods, with the given ones
+    /// changed (checked by [`classify`]).
+    pub fn for_model_with(
+        model: &crate::model::galerkin::GalerkinModel,
+        transient: u64,
+        changed: &MotionOverrides,
+    ) -> Self {
+        let book = Self::for_model(model, transient);
+        Self {
+            segments: changed.segments.unwrap_or(book.segments),
+            periods: changed.periods.unwrap_or(book.periods),
+            iterates: changed.iterates.unwrap_or(book.iterates),
+            longest_period: changed.longest_period.unwrap_or(book.longest_period),
+            resolution: changed.resolution.unwrap_or(book.resolution),
+            ..book
+        }
+    }
+}
+
 /// The class of a motion.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]

@@ -5,7 +5,7 @@
 use crate::model_args::{ModelArgs, StartArgs};
 use crate::orbit::spec_and_start;
 use crate::progress::Bars;
-use impacting_cantilever::analysis::motion::{classify, Motion, MotionOptions};
+use impacting_cantilever::analysis::motion::{classify, Motion, MotionOptions, MotionOverrides};
 use impacting_cantilever::engine::built::BuiltModel;
 use impacting_cantilever::error::Error;
 
@@ -63,15 +63,14 @@ pub fn run(args: &MotionArgs) -> Result<Report, Error> {
     let (spec, start, file) = spec_and_start(&args.model, &args.start)?;
     let model = BuiltModel::build(&spec)?;
     let (x0, from) = model.start(&start)?;
-    let book = MotionOptions::for_model(model.galerkin(), args.transient);
-    let options = MotionOptions {
-        segments: args.segments.unwrap_or(book.segments),
-        periods: args.segment_periods.unwrap_or(book.periods),
-        iterates: args.iterates.unwrap_or(book.iterates),
-        longest_period: args.longest_period.unwrap_or(book.longest_period),
-        resolution: args.resolution.unwrap_or(book.resolution),
-        ..book
+    let changed = MotionOverrides {
+        segments: args.segments,
+        periods: args.segment_periods,
+        iterates: args.iterates,
+        longest_period: args.longest_period,
+        resolution: args.resolution,
     };
+    let options = MotionOptions::for_model_with(model.galerkin(), args.transient, &changed);
     let motion = classify(&model, &x0, &options, &Bars::default())?;
     Ok(Report {
         motion,
