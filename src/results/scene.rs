@@ -80,6 +80,8 @@ pub struct Rendered {
     pub table: String,
     /// Further markdown tables, written as `<name>.md` beside `table.md`.
     pub extra_tables: Vec<(&'static str, String)>,
+    /// The plot's panels, for its narrow layout `plot-narrow.svg` (none: one layout).
+    pub panels: Vec<crate::results::narrow::Panel>,
 }
 
 impl Rendered {
@@ -89,6 +91,7 @@ impl Rendered {
             svg,
             table,
             extra_tables: Vec::new(),
+            panels: Vec::new(),
         }
     }
 }
@@ -425,8 +428,10 @@ pub fn key_numbers_document(spec: &dyn Entry, out: &SceneOutput) -> serde_json::
 /// [`Error::Io`] when `dir`, its lock or a file cannot be created or written.
 pub fn write(spec: &dyn Entry, out: &SceneOutput, dir: &Path) -> Result<(), Error> {
     let json = |v: &serde_json::Value| serde_json::to_string_pretty(v).unwrap_or_default();
+    let svg = svg_text(&out.rendered.svg);
+    let narrow = crate::results::narrow::stacked(&svg, &out.rendered.panels);
     let mut files = vec![
-        ("plot.svg".to_string(), svg_text(&out.rendered.svg)),
+        ("plot.svg".to_string(), svg),
         ("table.md".to_string(), out.rendered.table.clone()),
         (
             "data.json".to_string(),
@@ -449,8 +454,15 @@ pub fn write(spec: &dyn Entry, out: &SceneOutput, dir: &Path) -> Result<(), Erro
     for (name, table) in &out.rendered.extra_tables {
         files.push((format!("{name}.md"), table.clone()));
     }
+    if let Some(narrow) = narrow {
+        files.push((NARROW_PLOT.to_string(), narrow));
+    }
     crate::results::output_set::write_set(dir, &files)
 }
+
+/// The plot's narrow layout (its panels in one column), written beside `plot.svg` when the
+/// plot has panels.
+pub const NARROW_PLOT: &str = "plot-narrow.svg";
 
 /// The plots' text as the book's prose writes it: `X_Y` (a run of letters and digits after
 /// the underscore) as a subscript, so labels read r<sub>E</sub> and (β<sub>N</sub>)³ rather

@@ -250,6 +250,14 @@ pub fn build_only(
                 Some((spec.name().to_string(), bytes))
             })
             .collect(),
+        narrow: scenes
+            .iter()
+            .filter(|spec| {
+                let path = generated.join(spec.name()).join(scene::NARROW_PLOT);
+                path.is_file()
+            })
+            .map(|spec| spec.name().to_string())
+            .collect(),
         chapters: scenes.iter().fold(HashMap::new(), |mut m, spec| {
             m.entry(spec.chapter().to_string())
                 .or_insert_with(Vec::new)

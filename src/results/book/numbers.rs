@@ -32,6 +32,9 @@ pub struct NumbersPreprocessor {
     pub provenance: Provenance,
     /// How long each scene took in the build that computed it (s).
     pub seconds: HashMap<String, f64>,
+    /// The scenes whose plot has a narrow layout (`plot-narrow.svg`), shown instead on
+    /// narrow screens.
+    pub narrow: std::collections::HashSet<String>,
 }
 
 impl NumbersPreprocessor {
@@ -110,6 +113,34 @@ impl NumbersPreprocessor {
         Ok(out)
     }
 
+    /// `text` with each plot of a scene in [`Self::narrow`], `[![alt](generated/S/plot.svg)]
+    /// (generated/S/plot.svg)`, as a picture whose source on screens up to 620 px wide is
+    /// the plot's narrow layout (its panels in one column, each readable on a phone); the
+    /// link still opens the full plot.
+    pub fn narrow_plots(&self, text: &str) -> String {
+        let mut out = text.to_string();
+        for scene in &self.narrow {
+            let plot = format!("generated/{scene}/plot.svg");
+            let tail = format!("]({plot})]({plot})");
+            while let Some(end) = out.find(&tail) {
+                let Some(start) = out[..end].rfind("[![") else {
+                    break;
+                };
+                let alt = out[start + 3..end]
+                    .replace('&', "&amp;")
+                    .replace('"', "&quot;")
+                    .replace('<', "&lt;");
+                let narrow = format!("generated/{scene}/{}", crate::results::scene::NARROW_PLOT);
+                let html = format!(
+                    "<a href=\"{plot}\"><picture><source media=\"(max-width: 620px)\" \
+                     srcset=\"{narrow}\"><img src=\"{plot}\" alt=\"{alt}\"></picture></a>"
+                );
+                out.replace_range(start..end + tail.len(), &html);
+            }
+        }
+        out
+    }
+
     /// The footer of a page: provenance, and the data of its scene if it has one.
     pub fn footer(&self, chapter: &str) -> String {
         // the chapter's own result's build (a reused result may come from an earlier one)
@@ -160,7 +191,7 @@ impl Preprocessor for NumbersPreprocessor {
                     .map(|f| f.to_string_lossy().into_owned())
                     .unwrap_or_default();
                 match self.expand(&ch.content) {
-                    Ok(c) => ch.content = c + &self.footer(&file),
+                    Ok(c) => ch.content = self.narrow_plots(&c) + &self.footer(&file),
                     Err(e) => {
                         failure.get_or_insert(anyhow::anyhow!("chapter '{}': {e}", ch.name));
                     }
@@ -205,7 +236,16 @@ mod tests {
             provenances: HashMap::new(),
             provenance: Provenance::now("test"),
             seconds: [("s".to_string(), 12.3)].into_iter().collect(),
+            narrow: ["s".to_string()].into_iter().collect(),
         };
+        assert_eq!(
+            p.narrow_plots("a\n[![The \"plot\"](generated/s/plot.svg)](generated/s/plot.svg)\nb"),
+            "a\n<a href=\"generated/s/plot.svg\"><picture><source media=\"(max-width: 620px)\" \
+             srcset=\"generated/s/plot-narrow.svg\"><img src=\"generated/s/plot.svg\" \
+             alt=\"The &quot;plot&quot;\"></picture></a>\nb"
+        );
+        let other = "[![x](generated/t/plot.svg)](generated/t/plot.svg)";
+        assert_eq!(p.narrow_plots(other), other);
         assert_eq!(p.expand("{{time s}}").unwrap(), "12 s");
         assert_eq!(p.expand("a {{n s/x}} b").unwrap(), "a 1.235 b");
         // (1.23456 to 4 figures: the rounding, 4.4e-4, is larger than 3e-4 and is added)

@@ -404,8 +404,10 @@ impl Scene for Atlas {
     }
 
     fn render(d: &AtlasData) -> Result<Rendered, crate::results::render::RenderError> {
+        let (svg, panels) = render::plot(d)?;
         Ok(Rendered {
-            svg: render::plot(d)?,
+            svg,
+            panels,
             table: render::labels_table(d),
             extra_tables: vec![
                 ("decades", render::decades_table(d)),

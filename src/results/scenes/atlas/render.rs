@@ -1,6 +1,7 @@
 //! The atlas plot: four maps over (ω, k) — contacts per forcing period, period, stable
 //! orbits found, spectral radius — each with its key below; and two tables.
 
+use crate::results::narrow;
 use super::{cells, label, rest_labels};
 use crate::analysis::atlas::{AtlasData, Cell};
 use crate::analysis::motion::MotionClass;
@@ -170,14 +171,16 @@ fn panels() -> [Panel; 4] {
 ///
 /// # Errors
 /// [`RenderError`] when drawing fails.
-pub fn plot(d: &AtlasData) -> Result<String, RenderError> {
+pub fn plot(d: &AtlasData) -> Result<(String, Vec<narrow::Panel>), RenderError> {
     let p = &d.params;
     let height = 2 * (430 + KEY_HEIGHT);
     let mut svg = String::new();
+    let rects;
     {
         let root = SVGBackend::with_string(&mut svg, (WIDTH, height)).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
         let areas = root.split_evenly((2, 2));
+        rects = areas.iter().map(narrow::panel).collect();
         let ks: Vec<f64> = d.rows.iter().map(|r| r.k_over_k1.log10()).collect();
         let half = |v: &[f64]| {
             if v.len() < 2 {
@@ -263,7 +266,7 @@ pub fn plot(d: &AtlasData) -> Result<String, RenderError> {
         }
         root.present().map_err(drawing)?;
     }
-    Ok(svg)
+    Ok((svg, rects))
 }
 
 /// A key of coloured boxes and labels, then line samples and labels, wrapped into lines.

@@ -103,6 +103,7 @@ impl Scene for Basins {
         Ok(Rendered {
             svg: render::plot(d)?,
             table: render::table(d),
+            panels: Vec::new(),
             extra_tables: vec![],
         })
     }

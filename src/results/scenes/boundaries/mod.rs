@@ -482,6 +482,7 @@ impl Scene for Boundaries {
         Ok(Rendered {
             svg: render::plot(d)?,
             table: render::table(d),
+            panels: Vec::new(),
             extra_tables: vec![("grazing", render::grazing_table(d))],
         })
     }

@@ -491,7 +491,9 @@ impl Scene for Fig4 {
     }
 
     fn render(d: &Fig4Data) -> Result<Rendered, crate::results::render::RenderError> {
-        let mut r = Rendered::new(render::plot(d)?, render::table(d));
+        let (svg, panels) = render::plot(d)?;
+        let mut r = Rendered::new(svg, render::table(d));
+        r.panels = panels;
         r.extra_tables.push(("robustness", render::robustness_table(d)));
         Ok(r)
     }

@@ -1,6 +1,7 @@
 //! Figure 4: one period of each orbit — tip displacement against time and the phase
 //! portrait — free flight in blue, contact in red.
 
+use crate::results::narrow::{self, Panel};
 use crate::results::render::{
     tick,clip_to_band, drawing, markdown_table, styled_mesh, RenderError, CAPTION_FONT, WIDTH};
 use crate::analysis::orbit::OrbitKind;
@@ -28,7 +29,7 @@ fn pieces(points: &[(f64, f64, bool)]) -> Vec<(Vec<(f64, f64)>, bool)> {
 ///
 /// # Errors
 /// [`RenderError`] when drawing fails.
-pub fn plot(d: &Fig4Data) -> Result<String, RenderError> {
+pub fn plot(d: &Fig4Data) -> Result<(String, Vec<Panel>), RenderError> {
     // the contacts of the long-contact orbits, magnified, in a last row
     let zoomed: Vec<&super::Fig4Panel> = d
         .panels
@@ -38,6 +39,7 @@ pub fn plot(d: &Fig4Data) -> Result<String, RenderError> {
         .collect();
     let rows = d.panels.len().max(1) + usize::from(!zoomed.is_empty());
     let mut svg = String::new();
+    let panels;
     {
         let root =
             SVGBackend::with_string(&mut svg, (WIDTH, 330 * rows as u32)).into_drawing_area();
@@ -111,8 +113,11 @@ pub fn plot(d: &Fig4Data) -> Result<String, RenderError> {
             contact_magnified(&cells[2 * d.panels.len() + z], p)?;
         }
         root.present().map_err(drawing)?;
+        // every drawn cell: two per orbit, then the magnified contacts
+        let drawn = 2 * d.panels.len() + zoomed.len();
+        panels = cells.iter().take(drawn).map(narrow::panel).collect();
     }
-    Ok(svg)
+    Ok((svg, panels))
 }
 
 /// One contact of an orbit, magnified: the tip displacement from just before the entry to

@@ -489,7 +489,9 @@ impl Scene for Fig6 {
     }
 
     fn render(d: &Fig6Data) -> Result<Rendered, crate::results::render::RenderError> {
-        let mut r = Rendered::new(render::plot(d)?, render::table(d));
+        let (svg, panels) = render::plot(d)?;
+        let mut r = Rendered::new(svg, render::table(d));
+        r.panels = panels;
         r.extra_tables.push(("diagnostics", render::diagnostics_table(d)));
         r.extra_tables.push(("comparison", render::comparison_table(d)));
         Ok(r)

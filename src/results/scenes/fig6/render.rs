@@ -3,6 +3,7 @@
 //! oscillator (green); then r_E and the impact velocity along the scan of panel (a) — and
 //! its tables.
 
+use crate::results::narrow::{self, Panel};
 use super::{Case, Fig6Data, Probe};
 use crate::analysis::energetic::Coefficient;
 use crate::analysis::orbit::OrbitKind;
@@ -246,9 +247,10 @@ fn scan_panel<DB: DrawingBackend>(
 ///
 /// # Errors
 /// [`RenderError`] when drawing fails.
-pub fn plot(d: &Fig6Data) -> Result<String, RenderError> {
+pub fn plot(d: &Fig6Data) -> Result<(String, Vec<Panel>), RenderError> {
     let rows = d.cases.len().div_ceil(2);
     let mut svg = String::new();
+    let mut panels = Vec::new();
     {
         let height = 360 * rows as u32 + 560;
         let root = SVGBackend::with_string(&mut svg, (WIDTH, height)).into_drawing_area();
@@ -257,13 +259,15 @@ pub fn plot(d: &Fig6Data) -> Result<String, RenderError> {
         let cells = top.split_evenly((rows, 2));
         for (cell, c) in cells.iter().zip(&d.cases) {
             case_panel(cell, c, d.params.modes)?;
+            panels.push(narrow::panel(cell));
         }
         let (left, right) = bottom.split_horizontally(WIDTH / 2);
         scan_panel(&left, d, false)?;
         scan_panel(&right, d, true)?;
+        panels.extend([narrow::panel(&left), narrow::panel(&right)]);
         root.present().map_err(drawing)?;
     }
-    Ok(svg)
+    Ok((svg, panels))
 }
 
 fn which(c: &Case) -> String {

@@ -588,6 +588,7 @@ impl Scene for SideBySide {
         Ok(Rendered {
             svg: render::plot(d)?,
             table: render::headline(d),
+            panels: Vec::new(),
             extra_tables: vec![
                 ("setup", render::setup(d)),
                 ("problems", render::problems(d)),

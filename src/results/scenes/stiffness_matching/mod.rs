@@ -496,7 +496,9 @@ impl Scene for StiffnessMatching {
     }
 
     fn render(d: &MatchingData) -> Result<Rendered, crate::results::render::RenderError> {
-        let mut r = Rendered::new(render::plot(d)?, render::table(d));
+        let (svg, panels) = render::plot(d)?;
+        let mut r = Rendered::new(svg, render::table(d));
+        r.panels = panels;
         r.extra_tables.push(("needed", render::needed_table(d)));
         r.extra_tables.push(("two-basis", render_two_basis::table(d)));
         r.extra_tables.push(("losses", render_two_basis::losses_table(d, false)));

@@ -1,6 +1,7 @@
 //! Stiffness matching: errors against N and against the element count, N*(k) with the
 //! criterion, and the post-contact velocity profiles at finite k and in the rigid limit.
 
+use crate::results::narrow::{self, Panel};
 use super::MatchingData;
 use crate::analysis::convergence::Needed;
 use crate::results::render::{
@@ -18,8 +19,9 @@ const SHOWN: &str = "exit tip velocity";
 ///
 /// # Errors
 /// [`RenderError`] when drawing fails.
-pub fn plot(d: &MatchingData) -> Result<String, RenderError> {
+pub fn plot(d: &MatchingData) -> Result<(String, Vec<Panel>), RenderError> {
     let mut svg = String::new();
+    let panels;
     {
         let root = SVGBackend::with_string(&mut svg, (WIDTH, 2000)).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
@@ -35,8 +37,14 @@ pub fn plot(d: &MatchingData) -> Result<String, RenderError> {
         errors(&bottom[0], d, Ladder::TwoBasis)?;
         super::render_two_basis::losses(&bottom[1], d)?;
         root.present().map_err(drawing)?;
+        let halves = [&top[0], &top[1]];
+        panels = halves
+            .into_iter()
+            .chain([&rows[1], &third[0], &third[1], &bottom[0], &bottom[1]])
+            .map(narrow::panel)
+            .collect();
     }
-    Ok(svg)
+    Ok((svg, panels))
 }
 
 /// Which refinement ladder.

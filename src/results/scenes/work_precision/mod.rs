@@ -465,6 +465,7 @@ impl Scene for WorkPrecision {
         Ok(Rendered {
             svg: render::plot(d)?,
             table: render::table(d),
+            panels: Vec::new(),
             extra_tables: vec![
                 ("costs", render::costs_table(d)),
                 ("timing", render::timing_summary(d)),
