@@ -419,7 +419,8 @@ pub fn key_numbers_document(spec: &dyn Entry, out: &SceneOutput) -> serde_json::
     })
 }
 
-/// Writes `plot.svg`, `table.md` (and any further tables), `data.json` (with its
+/// Writes `plot.svg` (and [`NARROW_PLOT`] for a plot with panels), `table.md` (and any
+/// further tables), `data.json` (with its
 /// provenance), `key_numbers.json` ([`key_numbers_document`]) and `verdict.json` into
 /// `dir`, as one set ([`crate::results::output_set::write_set`]: never new files beside old
 /// ones).
