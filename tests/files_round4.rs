@@ -73,12 +73,20 @@ fn item_1_a_users_files_are_kept_whatever_their_names() {
         "{err}"
     );
     assert_eq!(listing(&mine), ["table.md"]);
+    // the same for the plot's narrow layout, a file every scene writes
+    let narrow = d.join("narrow");
+    std::fs::create_dir(&narrow).unwrap();
+    std::fs::write(narrow.join("plot-narrow.svg"), "my plot").unwrap();
+    let (code, _, err) = cantilever_in(&d, &["scene", "fig2", "--out", "narrow"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("plot-narrow.svg"), "{err}");
+    assert_eq!(listing(&narrow), ["plot-narrow.svg"]);
     assert_eq!(
         std::fs::read_to_string(mine.join("table.md")).unwrap(),
         "my table"
     );
     // nothing of the program's left beside or inside the folders but its set and manifest
-    assert_eq!(listing(&d), ["docs", "mine", "notes"]);
+    assert_eq!(listing(&d), ["docs", "mine", "narrow", "notes"]);
     assert_eq!(
         listing(&notes),
         [
@@ -87,6 +95,7 @@ fn item_1_a_users_files_are_kept_whatever_their_names() {
             "data.json",
             "key_numbers.json",
             "my-notes.md",
+            "plot-narrow.svg",
             "plot.svg",
             "table.md",
             "todo.md",

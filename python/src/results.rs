@@ -118,7 +118,7 @@ impl SceneRun {
             "svg": out.rendered.svg,
             "table": out.rendered.table,
             "extra_tables": out.rendered.extra_tables,
-            "panels": out.rendered.panels,
+            "narrow": out.rendered.narrow,
             "provenance": out.provenance,
         });
         let restore = py
@@ -175,7 +175,7 @@ pub fn scene_restore(payload: &str) -> Res<SceneRun> {
             svg: text("svg")?,
             table: text("table")?,
             extra_tables,
-            panels: serde_json::from_value(field("panels")?).map_err(|e| broken(&e.to_string()))?,
+            narrow: serde_json::from_value(field("narrow")?).map_err(|e| broken(&e.to_string()))?,
         },
         provenance: serde_json::from_value(field("provenance")?)
             .map_err(|e| broken(&e.to_string()))?,

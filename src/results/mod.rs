@@ -7,6 +7,7 @@ pub mod diff;
 pub mod files;
 #[cfg(feature = "plots")]
 pub mod marker;
+#[cfg(feature = "plots")]
 pub mod narrow;
 pub(crate) mod output_lock;
 pub mod output_set;

@@ -126,8 +126,9 @@ fn sticky_obstacle(dir: &Path, names: &[&str]) -> Option<String> {
 }
 
 /// The files every scene's set has (a scene may add tables).
-pub const SCENE_FILES: [&str; 5] = [
+pub const SCENE_FILES: [&str; 6] = [
     "plot.svg",
+    "plot-narrow.svg",
     "table.md",
     "data.json",
     "key_numbers.json",

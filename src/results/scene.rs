@@ -80,8 +80,9 @@ pub struct Rendered {
     pub table: String,
     /// Further markdown tables, written as `<name>.md` beside `table.md`.
     pub extra_tables: Vec<(&'static str, String)>,
-    /// The plot's panels, for its narrow layout `plot-narrow.svg` (none: one layout).
-    pub panels: Vec<crate::results::narrow::Panel>,
+    /// The plot drawn for narrow screens ([`crate::results::narrow::Layout::Narrow`]),
+    /// written as [`NARROW_PLOT`] (none: the wide plot only).
+    pub narrow: Option<String>,
 }
 
 impl Rendered {
@@ -91,8 +92,26 @@ impl Rendered {
             svg,
             table,
             extra_tables: Vec::new(),
-            panels: Vec::new(),
+            narrow: None,
         }
+    }
+
+    /// A plot drawn in both layouts ([`crate::results::narrow::Layout`]) and one table.
+    ///
+    /// # Errors
+    /// The plot's [`crate::results::render::RenderError`].
+    #[cfg(feature = "plots")]
+    pub fn drawn(
+        plot: impl Fn(
+            crate::results::narrow::Layout,
+        ) -> Result<String, crate::results::render::RenderError>,
+        table: String,
+    ) -> Result<Self, crate::results::render::RenderError> {
+        use crate::results::narrow::Layout;
+        Ok(Self {
+            narrow: Some(plot(Layout::Narrow)?),
+            ..Self::new(plot(Layout::Wide)?, table)
+        })
     }
 }
 
@@ -419,7 +438,7 @@ pub fn key_numbers_document(spec: &dyn Entry, out: &SceneOutput) -> serde_json::
     })
 }
 
-/// Writes `plot.svg` (and [`NARROW_PLOT`] for a plot with panels), `table.md` (and any
+/// Writes `plot.svg` (and its narrow layout [`NARROW_PLOT`]), `table.md` (and any
 /// further tables), `data.json` (with its
 /// provenance), `key_numbers.json` ([`key_numbers_document`]) and `verdict.json` into
 /// `dir`, as one set ([`crate::results::output_set::write_set`]: never new files beside old
@@ -430,7 +449,7 @@ pub fn key_numbers_document(spec: &dyn Entry, out: &SceneOutput) -> serde_json::
 pub fn write(spec: &dyn Entry, out: &SceneOutput, dir: &Path) -> Result<(), Error> {
     let json = |v: &serde_json::Value| serde_json::to_string_pretty(v).unwrap_or_default();
     let svg = svg_text(&out.rendered.svg);
-    let narrow = crate::results::narrow::stacked(&svg, &out.rendered.panels);
+    let narrow = out.rendered.narrow.as_deref().map(svg_text);
     let mut files = vec![
         ("plot.svg".to_string(), svg),
         ("table.md".to_string(), out.rendered.table.clone()),
@@ -461,8 +480,8 @@ pub fn write(spec: &dyn Entry, out: &SceneOutput, dir: &Path) -> Result<(), Erro
     crate::results::output_set::write_set(dir, &files)
 }
 
-/// The plot's narrow layout (its panels in one column), written beside `plot.svg` when the
-/// plot has panels.
+/// The plot drawn for narrow screens (its panels in one column,
+/// [`crate::results::narrow::Layout::Narrow`]), written beside `plot.svg`.
 pub const NARROW_PLOT: &str = "plot-narrow.svg";
 
 /// The plots' text as the book's prose writes it: `X_Y` (a run of letters and digits after

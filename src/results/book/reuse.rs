@@ -32,8 +32,9 @@ impl From<&SceneOutput> for SceneNumbers {
 }
 
 /// The files every scene writes (further tables come from the same write).
-const FILES: [&str; 5] = [
+const FILES: [&str; 6] = [
     "plot.svg",
+    "plot-narrow.svg",
     "table.md",
     "data.json",
     "key_numbers.json",

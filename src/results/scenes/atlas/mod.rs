@@ -404,11 +404,7 @@ impl Scene for Atlas {
     }
 
     fn render(d: &AtlasData) -> Result<Rendered, crate::results::render::RenderError> {
-        let (svg, panels) = render::plot(d)?;
         Ok(Rendered {
-            svg,
-            panels,
-            table: render::labels_table(d),
             extra_tables: vec![
                 ("decades", render::decades_table(d)),
                 ("motions", render::motions_table(d)),
@@ -425,6 +421,7 @@ impl Scene for Atlas {
                         .map_or_else(String::new, boundaries::meetings_table),
                 ),
             ],
+            ..Rendered::drawn(|layout| render::plot(d, layout), render::labels_table(d))?
         })
     }
 }

@@ -1,20 +1,25 @@
 //! The atlas plot: four maps over (ω, k) — contacts per forcing period, period, stable
 //! orbits found, spectral radius — each with its key below; and two tables.
 
-use crate::results::narrow;
+use crate::results::narrow::Layout;
 use super::{cells, label, rest_labels};
 use crate::analysis::atlas::{AtlasData, Cell};
 use crate::analysis::motion::MotionClass;
 use crate::results::render::{
-    cell, drawing, markdown_table, omega_log_k_mesh, viridis, RenderError, LABEL_FONT, WIDTH,
+    cell, drawing, markdown_table, omega_log_k_mesh, viridis, RenderError, LABEL_FONT,
 };
 use plotters::prelude::*;
 
 /// No stable orbit of period ≤ max_m (from rest, or at all).
 const NONE: RGBColor = RGBColor(190, 190, 190);
 
-/// Height of a panel's key strip.
-const KEY_HEIGHT: u32 = 160;
+/// Height of a panel's key strip (its lines wrap at the panel's width).
+fn key_height(layout: Layout) -> u32 {
+    match layout {
+        Layout::Wide => 160,
+        Layout::Narrow => 250,
+    }
+}
 
 /// One map: a caption, the colour of a cell, the key, and whether the boundary curves are
 /// drawn over it.
@@ -171,16 +176,22 @@ fn panels() -> [Panel; 4] {
 ///
 /// # Errors
 /// [`RenderError`] when drawing fails.
-pub fn plot(d: &AtlasData) -> Result<(String, Vec<narrow::Panel>), RenderError> {
+pub fn plot(d: &AtlasData, layout: Layout) -> Result<String, RenderError> {
     let p = &d.params;
-    let height = 2 * (430 + KEY_HEIGHT);
+    let key_height = key_height(layout);
+    // four maps of 500 × 430 px, each with its key below
+    let size = match layout {
+        Layout::Wide => layout.grid_size(2, 2, 2 * (430 + key_height)),
+        Layout::Narrow => (
+            layout.width(),
+            4 * (layout.panel_height(500, 430) + key_height),
+        ),
+    };
     let mut svg = String::new();
-    let rects;
     {
-        let root = SVGBackend::with_string(&mut svg, (WIDTH, height)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
-        let areas = root.split_evenly((2, 2));
-        rects = areas.iter().map(narrow::panel).collect();
+        let areas = layout.cells(&root, 2, 2);
         let ks: Vec<f64> = d.rows.iter().map(|r| r.k_over_k1.log10()).collect();
         let half = |v: &[f64]| {
             if v.len() < 2 {
@@ -193,7 +204,7 @@ pub fn plot(d: &AtlasData) -> Result<(String, Vec<narrow::Panel>), RenderError> 
         let (w0, w1) = (p.omega_range.0 - dw, p.omega_range.1 + dw);
         let (l0, l1) = (ks[0] - dl, ks[ks.len() - 1] + dl);
         for (area, panel) in areas.iter().zip(panels()) {
-            let (map, key) = area.split_vertically(area.dim_in_pixel().1 - KEY_HEIGHT);
+            let (map, key) = area.split_vertically(area.dim_in_pixel().1 - key_height);
             let mut chart = ChartBuilder::on(&map)
                 .caption(panel.caption, ("sans-serif", 20))
                 .margin(6)
@@ -266,7 +277,7 @@ pub fn plot(d: &AtlasData) -> Result<(String, Vec<narrow::Panel>), RenderError> 
         }
         root.present().map_err(drawing)?;
     }
-    Ok((svg, rects))
+    Ok(svg)
 }
 
 /// A key of coloured boxes and labels, then line samples and labels, wrapped into lines.

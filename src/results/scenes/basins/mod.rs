@@ -101,10 +101,8 @@ impl Scene for Basins {
 
     fn render(d: &BasinData) -> Result<Rendered, crate::results::render::RenderError> {
         Ok(Rendered {
-            svg: render::plot(d)?,
-            table: render::table(d),
-            panels: Vec::new(),
             extra_tables: vec![],
+            ..Rendered::drawn(|layout| render::plot(d, layout), render::table(d))?
         })
     }
 }

@@ -6,6 +6,7 @@ use crate::analysis::atlas::basins::BasinData;
 use crate::results::render::{
     drawing, markdown_table, palette, styled_mesh, RenderError, CAPTION_FONT, LABEL_FONT,
 };
+use crate::results::narrow::Layout;
 use plotters::prelude::*;
 
 /// No stable orbit of period ≤ max_m within the transient.
@@ -15,13 +16,34 @@ const NONE: RGBColor = RGBColor(190, 190, 190);
 ///
 /// # Errors
 /// [`RenderError`] when drawing fails.
-pub fn plot(d: &BasinData) -> Result<String, RenderError> {
+pub fn plot(d: &BasinData, layout: Layout) -> Result<String, RenderError> {
+    let (per, none) = d.counts();
+    let mut items: Vec<(RGBColor, String)> = d
+        .orbits
+        .iter()
+        .zip(&per)
+        .enumerate()
+        .map(|(i, (a, n))| (palette(i), format!("{} ({n} starts)", label(a))))
+        .collect();
+    if none > 0 {
+        items.push((NONE, format!("none ({none} starts)")));
+    }
+    items.push((BLACK, "× rest".to_string()));
+    // the map (760 × 660 px) and its key: one line, or one item per line when narrow
+    let (w, map_height, key_height) = match layout {
+        Layout::Wide => (760, 660, 60),
+        Layout::Narrow => (
+            layout.width(),
+            layout.panel_height(760, 660),
+            20 + 30 * u32::try_from(items.len()).unwrap_or(0),
+        ),
+    };
     let mut svg = String::new();
     {
-        let (w, h) = (760, 720);
-        let root = SVGBackend::with_string(&mut svg, (w, h)).into_drawing_area();
+        let root =
+            SVGBackend::with_string(&mut svg, (w, map_height + key_height)).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
-        let (plot, key) = root.split_vertically(h - 60);
+        let (plot, key) = root.split_vertically(map_height);
         let e = d.params.extent;
         let step = if d.params.points > 1 {
             2.0 * e / (d.params.points - 1) as f64
@@ -56,29 +78,21 @@ pub fn plot(d: &BasinData) -> Result<String, RenderError> {
         chart
             .draw_series(std::iter::once(Cross::new((0.0, 0.0), 8, BLACK.stroke_width(3))))
             .map_err(drawing)?;
-        let (per, none) = d.counts();
-        let mut items: Vec<(RGBColor, String)> = d
-            .orbits
-            .iter()
-            .zip(&per)
-            .enumerate()
-            .map(|(i, (a, n))| (palette(i), format!("{} ({n} starts)", label(a))))
-            .collect();
-        if none > 0 {
-            items.push((NONE, format!("none ({none} starts)")));
-        }
-        items.push((BLACK, "× rest".to_string()));
-        let mut x = 70;
+        let (mut x, mut y) = (if layout == Layout::Wide { 70 } else { 20 }, 16);
         for (colour, text) in items {
             if text.starts_with('×') {
-                key.draw(&Text::new(text.clone(), (x, 18), LABEL_FONT)).map_err(drawing)?;
+                key.draw(&Text::new(text.clone(), (x, y + 2), LABEL_FONT))
+                    .map_err(drawing)?;
                 continue;
             }
-            key.draw(&Rectangle::new([(x, 16), (x + 20, 36)], colour.filled()))
+            key.draw(&Rectangle::new([(x, y), (x + 20, y + 20)], colour.filled()))
                 .map_err(drawing)?;
-            key.draw(&Text::new(text.clone(), (x + 28, 18), LABEL_FONT))
+            key.draw(&Text::new(text.clone(), (x + 28, y + 2), LABEL_FONT))
                 .map_err(drawing)?;
-            x += 28 + 9 * text.chars().count() as i32 + 24;
+            match layout {
+                Layout::Wide => x += 28 + 9 * text.chars().count() as i32 + 24,
+                Layout::Narrow => (x, y) = (20, y + 30),
+            }
         }
         root.present().map_err(drawing)?;
     }

@@ -480,10 +480,8 @@ impl Scene for Boundaries {
 
     fn render(d: &BoundariesData) -> Result<Rendered, crate::results::render::RenderError> {
         Ok(Rendered {
-            svg: render::plot(d)?,
-            table: render::table(d),
-            panels: Vec::new(),
             extra_tables: vec![("grazing", render::grazing_table(d))],
+            ..Rendered::drawn(|layout| render::plot(d, layout), render::table(d))?
         })
     }
 }

@@ -4,18 +4,19 @@
 use super::{converged_from, relative_to_finest, Boundary, BoundariesData};
 use crate::results::render::{
     dashed_key, draw_legend, drawing, markdown_table, palette, power_of_ten, solid_key,
-    styled_mesh, RenderError, CAPTION_FONT, WIDTH,
+    styled_mesh, RenderError, CAPTION_FONT,
 };
+use crate::results::narrow::Layout;
 use plotters::prelude::*;
 
 /// The SVG plot.
 ///
 /// # Errors
 /// [`RenderError`] when drawing fails.
-pub fn plot(d: &BoundariesData) -> Result<String, RenderError> {
+pub fn plot(d: &BoundariesData, layout: Layout) -> Result<String, RenderError> {
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (WIDTH, 560)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, layout.grid_size(1, 1, 560)).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
         let (k0, k1) = d.params.k_range;
         // the ω the curves span, with a margin (the traced rectangle is wider)
@@ -31,7 +32,13 @@ pub fn plot(d: &BoundariesData) -> Result<String, RenderError> {
         };
         let mut chart = ChartBuilder::on(&root)
             .caption(
-                "period doubling (solid) and grazing into two contacts (dashed) of the (1,1) orbit",
+                match layout {
+                    Layout::Wide => {
+                        "period doubling (solid) and grazing into two contacts (dashed) of the \
+                         (1,1) orbit"
+                    }
+                    Layout::Narrow => "(1,1): period doubling (solid), grazing (dashed)",
+                },
                 CAPTION_FONT,
             )
             .margin(10)

@@ -440,6 +440,6 @@ impl Scene for EnergeticMap {
     }
 
     fn render(d: &MapData) -> Result<Rendered, crate::results::render::RenderError> {
-        Ok(Rendered::new(render::plot(d)?, render::table(d)))
+        Rendered::drawn(|layout| render::plot(d, layout), render::table(d))
     }
 }

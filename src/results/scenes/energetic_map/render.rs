@@ -3,6 +3,7 @@
 
 use super::{Cell, MapData};
 use crate::results::render::{omega_log_k_mesh, viridis, drawing, markdown_table, styled_mesh, RenderError, CAPTION_FONT, LABEL_FONT, WIDTH};
+use crate::results::narrow::Layout;
 use plotters::prelude::*;
 
 fn special(c: &Cell) -> Option<(RGBColor, &'static str)> {
@@ -20,13 +21,19 @@ fn special(c: &Cell) -> Option<(RGBColor, &'static str)> {
 ///
 /// # Errors
 /// [`RenderError`] when drawing fails.
-pub fn plot(d: &MapData) -> Result<String, RenderError> {
+pub fn plot(d: &MapData, layout: Layout) -> Result<String, RenderError> {
     let p = &d.params;
+    // the map, and beside it (or under it) the colour bar and the key of special cells
+    let map_height = layout.panel_height(WIDTH - 230, 620);
+    let size = match layout {
+        Layout::Wide => (WIDTH, 620),
+        Layout::Narrow => (layout.width(), map_height + 240),
+    };
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (WIDTH, 620)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
-        let (map, side) = root.split_horizontally(WIDTH - 230);
+        let (map, side) = layout.beside(&root, WIDTH - 230, map_height);
         let half = |v: &[f64], log: bool| -> f64 {
             if v.len() < 2 {
                 return if log { 0.25 } else { 0.05 };
@@ -39,7 +46,13 @@ pub fn plot(d: &MapData) -> Result<String, RenderError> {
         let l0 = p.k_over_k1.first().map_or(1.0, |k| k.log10()) - dk;
         let l1 = p.k_over_k1.last().map_or(4.0, |k| k.log10()) + dk;
         let mut chart = ChartBuilder::on(&map)
-            .caption("energetic restitution r_E over ω and k (d₀ = 0, ζ₁ = 0.01)", CAPTION_FONT)
+            .caption(
+                match layout {
+                    Layout::Wide => "energetic restitution r_E over ω and k (d₀ = 0, ζ₁ = 0.01)",
+                    Layout::Narrow => "r_E over ω and k (d₀ = 0, ζ₁ = 0.01)",
+                },
+                CAPTION_FONT,
+            )
             .margin(8)
             .margin_right(20)
             .x_label_area_size(48)
@@ -71,8 +84,10 @@ pub fn plot(d: &MapData) -> Result<String, RenderError> {
             }
         }
         // colour bar and the key of the special cells
-        let bar = side.margin(40, 60, 20, 20);
-        let (bar_area, key_area) = bar.split_vertically(300);
+        let (bar_area, key_area) = match layout {
+            Layout::Wide => side.margin(40, 60, 20, 20).split_vertically(300),
+            Layout::Narrow => side.margin(20, 20, 20, 20).split_horizontally(150),
+        };
         let mut bar_chart = ChartBuilder::on(&bar_area)
             .caption("r_E", LABEL_FONT)
             .x_label_area_size(0)

@@ -611,7 +611,7 @@ impl Scene for Experiment {
     }
 
     fn render(d: &ExperimentData) -> Result<Rendered, crate::results::render::RenderError> {
-        let mut r = Rendered::new(render::plot(d)?, render::table(d));
+        let mut r = Rendered::drawn(|layout| render::plot(d, layout), render::table(d))?;
         r.extra_tables.push(("variants", render::variants_table(d)));
         Ok(r)
     }

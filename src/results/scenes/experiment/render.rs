@@ -9,6 +9,16 @@ use crate::results::render::{
     draw_legend, drawing, markdown_table, solid_key, styled_mesh, RenderError, CAPTION_FONT,
     LABEL_FONT, WIDTH,
 };
+use crate::results::narrow::Layout;
+
+/// A mode number as subscript digits (T₂).
+fn subscript(n: usize) -> String {
+    const DIGITS: [char; 10] = ['₀', '₁', '₂', '₃', '₄', '₅', '₆', '₇', '₈', '₉'];
+    n.to_string()
+        .chars()
+        .filter_map(|c| c.to_digit(10).map(|d| DIGITS[d as usize]))
+        .collect()
+}
 use plotters::prelude::*;
 
 const FREE: RGBColor = RGBColor(0, 114, 178);
@@ -18,12 +28,14 @@ const CONTACT: RGBColor = RGBColor(213, 40, 0);
 ///
 /// # Errors
 /// [`RenderError`] when drawing fails.
-pub fn plot(d: &ExperimentData) -> Result<String, RenderError> {
+pub fn plot(d: &ExperimentData, layout: Layout) -> Result<String, RenderError> {
+    // (a) 1000 × 420 px above (b) 1000 × 400 px
+    let (a, b) = (layout.panel_height(WIDTH, 420), layout.panel_height(WIDTH, 400));
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (WIDTH, 820)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, (layout.width(), a + b)).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
-        let (top, bottom) = root.split_vertically(420);
+        let (top, bottom) = root.split_vertically(a);
         // (a) the contact cluster, with a margin of a tenth of the period either side
         let margin = 0.1 * d.forcing.1 * 1e3;
         let (c0, c1) = match (d.contacts_ms.first(), d.contacts_ms.last()) {
@@ -71,7 +83,11 @@ pub fn plot(d: &ExperimentData) -> Result<String, RenderError> {
                 .map_err(drawing)?;
             chart
                 .draw_series(std::iter::once(Text::new(
-                    format!("mode {} period, {t:.1} ms", j + 1),
+                    match layout {
+                        Layout::Wide => format!("mode {} period, {t:.1} ms", j + 1),
+                        // (the mode as a subscript: the long bar leaves little room)
+                        Layout::Narrow => format!("T{} {t:.1} ms", subscript(j + 1)),
+                    },
                     (x + t + 0.01 * (c1 - c0), y + 0.3 * pad),
                     LABEL_FONT,
                 )))
@@ -129,8 +145,16 @@ pub fn plot(d: &ExperimentData) -> Result<String, RenderError> {
                 .map_err(drawing)?;
             chart
                 .draw_series(std::iter::once(Text::new(
-                    format!("mode {}: {f:.0} Hz", i + 1),
-                    (*f + 2.0, top_v * 1.6),
+                    match layout {
+                        Layout::Wide => format!("mode {}: {f:.0} Hz", i + 1),
+                        // (the caption says the dashed lines are the free frequencies)
+                        Layout::Narrow => format!("{f:.0} Hz"),
+                    },
+                    // narrow: every other label lower, so that neighbours do not overlap
+                    (
+                        *f + 2.0,
+                        top_v * if layout == Layout::Narrow && i % 2 == 1 { 0.3 } else { 1.6 },
+                    ),
                     LABEL_FONT,
                 )))
                 .map_err(drawing)?;

@@ -285,6 +285,6 @@ impl Scene for Fig2 {
     }
 
     fn render(d: &Fig2Data) -> Result<Rendered, crate::results::render::RenderError> {
-        Ok(Rendered::new(render::plot(d)?, render::table(d)))
+        Rendered::drawn(|layout| render::plot(d, layout), render::table(d))
     }
 }

@@ -4,8 +4,9 @@
 use crate::results::render::{
     power_of_ten,
     cell, dashed_key, draw_legend, drawing, markdown_table, palette, solid_key, styled_mesh,
-    RenderError, CAPTION_FONT, WIDTH,
+    RenderError, CAPTION_FONT,
 };
+use crate::results::narrow::Layout;
 use super::Fig2Data;
 use plotters::prelude::*;
 
@@ -13,12 +14,12 @@ use plotters::prelude::*;
 ///
 /// # Errors
 /// [`RenderError`] when drawing fails.
-pub fn plot(d: &Fig2Data) -> Result<String, RenderError> {
+pub fn plot(d: &Fig2Data, layout: Layout) -> Result<String, RenderError> {
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (WIDTH, 900)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, layout.grid_size(2, 2, 900)).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
-        let panels = root.split_evenly((2, 2));
+        let panels = layout.cells(&root, 2, 2);
         let (lo, hi) = d.params.k_over_k1_range;
         let w1 = d.k1.sqrt();
         let letters = ["(a)", "(b)", "(c)", "(d)"];

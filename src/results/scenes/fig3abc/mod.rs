@@ -336,7 +336,7 @@ impl Scene for Fig3abc {
     }
 
     fn render(d: &Fig3abcData) -> Result<Rendered, crate::results::render::RenderError> {
-        let mut r = Rendered::new(render::plot(d)?, render::table(d));
+        let mut r = Rendered::drawn(|layout| render::plot(d, layout), render::table(d))?;
         r.extra_tables.push(("ratios", render::ratios_table(d)));
         Ok(r)
     }

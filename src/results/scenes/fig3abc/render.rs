@@ -6,8 +6,9 @@ use crate::results::render::{
     power_of_ten,
     cell,
     dashed_key, draw_legend, drawing, markdown_table, palette, solid_key, styled_mesh,
-    RenderError, CAPTION_FONT, WIDTH,
+    RenderError, CAPTION_FONT,
 };
+use crate::results::narrow::Layout;
 use super::Fig3abcData;
 use plotters::prelude::*;
 
@@ -83,12 +84,12 @@ fn panel<DB: DrawingBackend>(
 ///
 /// # Errors
 /// [`RenderError`] when drawing fails.
-pub fn plot(d: &Fig3abcData) -> Result<String, RenderError> {
+pub fn plot(d: &Fig3abcData, layout: Layout) -> Result<String, RenderError> {
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (WIDTH, 860)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, layout.grid_size(2, 2, 860)).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
-        let cells = root.split_evenly((2, 2));
+        let cells = layout.cells(&root, 2, 2);
         let eps = &d.params.eps;
         if let Some(one) = d.series.iter().find_map(|s| s.one_mode.as_ref()) {
             panel(

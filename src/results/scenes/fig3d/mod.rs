@@ -254,6 +254,6 @@ impl Scene for Fig3d {
     }
 
     fn render(d: &Fig3dData) -> Result<Rendered, crate::results::render::RenderError> {
-        Ok(Rendered::new(render::plot(d)?, render::table(d)))
+        Rendered::drawn(|layout| render::plot(d, layout), render::table(d))
     }
 }

@@ -3,8 +3,9 @@
 
 use crate::results::render::{
     dashed_key, draw_legend, drawing, markdown_table, palette, solid_key, styled_mesh,
-    RenderError, CAPTION_FONT, WIDTH,
+    RenderError, CAPTION_FONT,
 };
+use crate::results::narrow::Layout;
 use super::Fig3dData;
 use plotters::prelude::*;
 
@@ -12,12 +13,12 @@ use plotters::prelude::*;
 ///
 /// # Errors
 /// [`RenderError`] when drawing fails.
-pub fn plot(d: &Fig3dData) -> Result<String, RenderError> {
+pub fn plot(d: &Fig3dData, layout: Layout) -> Result<String, RenderError> {
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (WIDTH, 520)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, layout.grid_size(1, 2, 520)).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
-        let panels = root.split_evenly((1, 2));
+        let panels = layout.cells(&root, 1, 2);
         for (i, law) in ["stiffness-limit", "collocation"].iter().enumerate() {
             let profiles: Vec<_> = d.profiles.iter().filter(|p| p.law == *law).collect();
             let (lo, hi) = profiles

@@ -491,9 +491,7 @@ impl Scene for Fig4 {
     }
 
     fn render(d: &Fig4Data) -> Result<Rendered, crate::results::render::RenderError> {
-        let (svg, panels) = render::plot(d)?;
-        let mut r = Rendered::new(svg, render::table(d));
-        r.panels = panels;
+        let mut r = Rendered::drawn(|layout| render::plot(d, layout), render::table(d))?;
         r.extra_tables.push(("robustness", render::robustness_table(d)));
         Ok(r)
     }

@@ -1,9 +1,9 @@
 //! Figure 4: one period of each orbit — tip displacement against time and the phase
 //! portrait — free flight in blue, contact in red.
 
-use crate::results::narrow::{self, Panel};
+use crate::results::narrow::Layout;
 use crate::results::render::{
-    tick,clip_to_band, drawing, markdown_table, styled_mesh, RenderError, CAPTION_FONT, WIDTH};
+    tick,clip_to_band, drawing, markdown_table, styled_mesh, RenderError, CAPTION_FONT};
 use crate::analysis::orbit::OrbitKind;
 use crate::base::report::format_sig;
 use super::Fig4Data;
@@ -29,7 +29,7 @@ fn pieces(points: &[(f64, f64, bool)]) -> Vec<(Vec<(f64, f64)>, bool)> {
 ///
 /// # Errors
 /// [`RenderError`] when drawing fails.
-pub fn plot(d: &Fig4Data) -> Result<(String, Vec<Panel>), RenderError> {
+pub fn plot(d: &Fig4Data, layout: Layout) -> Result<String, RenderError> {
     // the contacts of the long-contact orbits, magnified, in a last row
     let zoomed: Vec<&super::Fig4Panel> = d
         .panels
@@ -38,13 +38,23 @@ pub fn plot(d: &Fig4Data) -> Result<(String, Vec<Panel>), RenderError> {
         .take(2)
         .collect();
     let rows = d.panels.len().max(1) + usize::from(!zoomed.is_empty());
+    // every drawn cell: two per orbit, then the magnified contacts
+    let drawn = 2 * d.panels.len() + zoomed.len();
+    let size = match layout {
+        Layout::Wide => layout.grid_size(rows, 2, 330 * rows as u32),
+        Layout::Narrow => (
+            layout.width(),
+            layout.panel_height(500, 330) * u32::try_from(drawn.max(1)).unwrap_or(1),
+        ),
+    };
     let mut svg = String::new();
-    let panels;
     {
-        let root =
-            SVGBackend::with_string(&mut svg, (WIDTH, 330 * rows as u32)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
-        let cells = root.split_evenly((rows, 2));
+        let cells = match layout {
+            Layout::Wide => root.split_evenly((rows, 2)),
+            Layout::Narrow => root.split_evenly((drawn.max(1), 1)),
+        };
         for (r, p) in d.panels.iter().enumerate() {
             let span = p.series.last().map_or(1.0, |s| s.0.max(1.0));
             let (dmin, dmax) = p
@@ -113,11 +123,8 @@ pub fn plot(d: &Fig4Data) -> Result<(String, Vec<Panel>), RenderError> {
             contact_magnified(&cells[2 * d.panels.len() + z], p)?;
         }
         root.present().map_err(drawing)?;
-        // every drawn cell: two per orbit, then the magnified contacts
-        let drawn = 2 * d.panels.len() + zoomed.len();
-        panels = cells.iter().take(drawn).map(narrow::panel).collect();
     }
-    Ok((svg, panels))
+    Ok(svg)
 }
 
 /// One contact of an orbit, magnified: the tip displacement from just before the entry to

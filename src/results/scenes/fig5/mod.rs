@@ -593,7 +593,7 @@ impl Scene for Fig5 {
     }
 
     fn render(d: &Fig5Data) -> Result<Rendered, crate::results::render::RenderError> {
-        let mut r = Rendered::new(render::plot(d)?, render::table(d));
+        let mut r = Rendered::drawn(|layout| render::plot(d, layout), render::table(d))?;
         r.extra_tables
             .push(("transitions", render::transitions_table(d)));
         r.extra_tables.push(("bands", render::bands_table(d)));

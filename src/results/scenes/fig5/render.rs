@@ -3,10 +3,11 @@
 use crate::results::render::{
     power_of_ten,
     cell, dashed_key, draw_legend, drawing, markdown_table, styled_mesh, RenderError,
-    CAPTION_FONT, LABEL_FONT, WIDTH,
+    CAPTION_FONT, LABEL_FONT,
 };
 use crate::results::marker::{Marker, Shape};
 use super::Fig5Data;
+use crate::results::narrow::Layout;
 use plotters::prelude::*;
 
 /// The SVG plot: one panel per N, each with its own velocity range. Points repeating on a
@@ -15,18 +16,20 @@ use plotters::prelude::*;
 ///
 /// # Errors
 /// [`RenderError`] when drawing fails.
-pub fn plot(d: &Fig5Data) -> Result<String, RenderError> {
+pub fn plot(d: &Fig5Data, layout: Layout) -> Result<String, RenderError> {
     let rows = d.diagrams.len().max(1);
+    // one diagram per row, 1000 × 300 px each, and the legend's strip
+    let (_, height) = layout.grid_size(rows, 1, 300 * rows as u32);
     let mut svg = String::new();
     {
         let root =
-            SVGBackend::with_string(&mut svg, (WIDTH, 300 * rows as u32 + LEGEND_HEIGHT))
+            SVGBackend::with_string(&mut svg, (layout.width(), height + legend_height(layout)))
                 .into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
-        let (top, strip) = root.split_vertically(300 * rows as u32);
+        let (top, strip) = root.split_vertically(height);
         let panels = top.split_evenly((rows, 1));
         if !d.branches.is_empty() {
-            branch_legend(&strip, d)?;
+            branch_legend(&strip, d, layout)?;
         }
         let (lo, hi) = d.params.k_over_k1_range;
         let k2 = crate::model::continuum::modal_stiffness(2).unwrap_or(f64::NAN)
@@ -94,8 +97,17 @@ pub fn plot(d: &Fig5Data) -> Result<String, RenderError> {
                 if let Some(r) = &d.rigid_limit {
                     chart
                         .draw_series(std::iter::once(Text::new(
-                            format!("rigid limit (k → ∞): {:.1} ↑", r.impact_velocity),
-                            (hi / 12.0, vmax * 0.93),
+                            match layout {
+                                Layout::Wide => {
+                                    format!("rigid limit (k → ∞): {:.1} ↑", r.impact_velocity)
+                                }
+                                Layout::Narrow => format!("k → ∞: {:.1} ↑", r.impact_velocity),
+                            },
+                            // narrow: further left, so that the label ends inside the panel
+                            match layout {
+                                Layout::Wide => (hi / 12.0, vmax * 0.93),
+                                Layout::Narrow => (lo * (hi / lo).powf(0.5), vmax * 0.93),
+                            },
                             LABEL_FONT.into_font().color(&RGBColor(0, 120, 60)),
                         )))
                         .map_err(drawing)?;
@@ -203,39 +215,51 @@ fn draw_branches(
 }
 
 /// Height of the strip under the panels that holds the branches' legend.
-const LEGEND_HEIGHT: u32 = 64;
+fn legend_height(layout: Layout) -> u32 {
+    match layout {
+        Layout::Wide => 64,
+        Layout::Narrow => 150,
+    }
+}
 
 /// The legend of the branches, in a strip under the panels (inside a panel it would hide
 /// points): line styles and every bifurcation kind found in any panel.
 fn branch_legend(
     strip: &DrawingArea<SVGBackend, plotters::coord::Shift>,
     d: &Fig5Data,
+    layout: Layout,
 ) -> Result<(), RenderError> {
     let font = LABEL_FONT.into_font();
-    let (mut x, y) = (20i32, 24i32);
-    let entry = |x: &mut i32, label: &str| -> Result<(), RenderError> {
+    let width = i32::try_from(layout.width()).unwrap_or(i32::MAX);
+    let (mut x, mut y) = (20i32, 24i32);
+    // an entry's label; when narrow, the next entry goes on a new line if it would not fit
+    // (180 px)
+    let entry = |x: &mut i32, y: &mut i32, label: &str| -> Result<(), RenderError> {
         strip
-            .draw(&Text::new(label.to_string(), (*x + 34, y - 8), font.clone()))
+            .draw(&Text::new(label.to_string(), (*x + 34, *y - 8), font.clone()))
             .map_err(drawing)?;
         *x += 44 + 8 * label.chars().count() as i32;
+        if layout == Layout::Narrow && *x + 180 > width {
+            (*x, *y) = (20, *y + 30);
+        }
         Ok(())
     };
     // the points of the diagram itself: the runs from rest and the random starts
     strip
         .draw(&Circle::new((x + 13, y), 3, RGBColor(0, 60, 140).mix(0.6).filled()))
         .map_err(drawing)?;
-    entry(&mut x, "simulated")?;
+    entry(&mut x, &mut y, "simulated")?;
     strip
         .draw(&PathElement::new(vec![(x, y), (x + 26, y)], STABLE))
         .map_err(drawing)?;
-    entry(&mut x, "branch, stable")?;
+    entry(&mut x, &mut y, "branch, stable")?;
     for i in 0..3 {
         let x0 = x + 9 * i;
         strip
             .draw(&PathElement::new(vec![(x0, y), (x0 + 5, y)], UNSTABLE))
             .map_err(drawing)?;
     }
-    entry(&mut x, "unstable")?;
+    entry(&mut x, &mut y, "unstable")?;
     for (kind, name, color, shape) in MARKERS {
         let found = d
             .branches
@@ -246,7 +270,7 @@ fn branch_legend(
             strip
                 .draw(&Marker::new((x + 13, y), shape, 7, color.stroke_width(2)))
                 .map_err(drawing)?;
-            entry(&mut x, name)?;
+            entry(&mut x, &mut y, name)?;
         }
     }
     Ok(())

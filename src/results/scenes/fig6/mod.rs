@@ -489,9 +489,7 @@ impl Scene for Fig6 {
     }
 
     fn render(d: &Fig6Data) -> Result<Rendered, crate::results::render::RenderError> {
-        let (svg, panels) = render::plot(d)?;
-        let mut r = Rendered::new(svg, render::table(d));
-        r.panels = panels;
+        let mut r = Rendered::drawn(|layout| render::plot(d, layout), render::table(d))?;
         r.extra_tables.push(("diagnostics", render::diagnostics_table(d)));
         r.extra_tables.push(("comparison", render::comparison_table(d)));
         Ok(r)

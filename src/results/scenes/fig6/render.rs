@@ -3,7 +3,7 @@
 //! oscillator (green); then r_E and the impact velocity along the scan of panel (a) — and
 //! its tables.
 
-use crate::results::narrow::{self, Panel};
+use crate::results::narrow::Layout;
 use super::{Case, Fig6Data, Probe};
 use crate::analysis::energetic::Coefficient;
 use crate::analysis::orbit::OrbitKind;
@@ -247,27 +247,36 @@ fn scan_panel<DB: DrawingBackend>(
 ///
 /// # Errors
 /// [`RenderError`] when drawing fails.
-pub fn plot(d: &Fig6Data) -> Result<(String, Vec<Panel>), RenderError> {
+pub fn plot(d: &Fig6Data, layout: Layout) -> Result<String, RenderError> {
+    // the cases two per row (500 × 360 px each), then the two scans (500 × 560 px each)
     let rows = d.cases.len().div_ceil(2);
+    let (case, scan) = (layout.panel_height(500, 360), layout.panel_height(500, 560));
+    let (cases_height, height) = match layout {
+        Layout::Wide => (case * rows as u32, case * rows as u32 + scan),
+        Layout::Narrow => {
+            let n = u32::try_from(d.cases.len()).unwrap_or(0);
+            (case * n, case * n + 2 * scan)
+        }
+    };
     let mut svg = String::new();
-    let mut panels = Vec::new();
     {
-        let height = 360 * rows as u32 + 560;
-        let root = SVGBackend::with_string(&mut svg, (WIDTH, height)).into_drawing_area();
+        let root =
+            SVGBackend::with_string(&mut svg, (layout.width(), height)).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
-        let (top, bottom) = root.split_vertically(360 * rows as u32);
-        let cells = top.split_evenly((rows, 2));
+        let (top, bottom) = root.split_vertically(cases_height);
+        let cells = match layout {
+            Layout::Wide => top.split_evenly((rows, 2)),
+            Layout::Narrow => top.split_evenly((d.cases.len().max(1), 1)),
+        };
         for (cell, c) in cells.iter().zip(&d.cases) {
             case_panel(cell, c, d.params.modes)?;
-            panels.push(narrow::panel(cell));
         }
-        let (left, right) = bottom.split_horizontally(WIDTH / 2);
+        let (left, right) = layout.beside(&bottom, WIDTH / 2, scan);
         scan_panel(&left, d, false)?;
         scan_panel(&right, d, true)?;
-        panels.extend([narrow::panel(&left), narrow::panel(&right)]);
         root.present().map_err(drawing)?;
     }
-    Ok((svg, panels))
+    Ok(svg)
 }
 
 fn which(c: &Case) -> String {

@@ -345,7 +345,7 @@ impl Scene for Fig9 {
     }
 
     fn render(d: &Fig9Data) -> Result<Rendered, crate::results::render::RenderError> {
-        let mut r = Rendered::new(render::plot(d)?, render::table(d));
+        let mut r = Rendered::drawn(|layout| render::plot(d, layout), render::table(d))?;
         r.extra_tables.push(("scans", render::scans_table(d)));
         Ok(r)
     }

@@ -8,6 +8,7 @@ use crate::results::render::{
     cell, draw_legend, drawing, markdown_table, palette, solid_key, styled_mesh, RenderError,
     CAPTION_FONT, LABEL_FONT, WIDTH,
 };
+use crate::results::narrow::Layout;
 use plotters::prelude::*;
 
 const FREE: RGBColor = RGBColor(0, 114, 178);
@@ -69,6 +70,7 @@ fn velocity_panel<DB: DrawingBackend>(
 fn spectrum_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
     d: &Fig9Data,
+    layout: Layout,
 ) -> Result<(), RenderError> {
     let n = d.harmonic_amplitudes.len();
     let top = d.harmonic_amplitudes.iter().cloned().fold(0.0, f64::max);
@@ -103,7 +105,8 @@ fn spectrum_panel<DB: DrawingBackend>(
         chart
             .draw_series(std::iter::once(Text::new(
                 format!("mode {}", i + 1),
-                (h + 0.15, top * 1.6),
+                // narrow: every other label lower, so that neighbours do not run together
+                (h + 0.15, top * if layout == Layout::Narrow && i % 2 == 1 { 0.25 } else { 1.6 }),
                 LABEL_FONT,
             )))
             .map_err(drawing)?;
@@ -199,24 +202,40 @@ fn scan_panel<DB: DrawingBackend>(
 ///
 /// # Errors
 /// [`RenderError`] when drawing fails.
-pub fn plot(d: &Fig9Data) -> Result<String, RenderError> {
+pub fn plot(d: &Fig9Data, layout: Layout) -> Result<String, RenderError> {
+    // (a) and (b) 1000 × 380 px each; the scans' title, in lines; four scans side by side
+    // (250 × 330 px) or stacked (300 px each)
+    let top = layout.panel_height(WIDTH, 380);
+    let lines: &[&str] = match layout {
+        Layout::Wide => &[
+            "contacts per period: intervals (filled), penetration maxima (rings); dashed: five",
+        ],
+        Layout::Narrow => &[
+            "contacts per period: intervals (filled),",
+            "penetration maxima (rings); dashed: five",
+        ],
+    };
+    let title_height = 12 + 28 * u32::try_from(lines.len()).unwrap_or(1);
+    let scans_height = match layout {
+        Layout::Wide => 330,
+        Layout::Narrow => 4 * 300,
+    };
+    let size = (layout.width(), 2 * top + title_height + scans_height);
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (WIDTH, 1130)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
-        let (a, rest) = root.split_vertically(380);
-        let (b, scans) = rest.split_vertically(380);
+        let (a, rest) = root.split_vertically(top);
+        let (b, scans) = rest.split_vertically(top);
         velocity_panel(&a, d)?;
-        spectrum_panel(&b, d)?;
-        let (title, cells) = scans.split_vertically(40);
-        title
-            .draw(&Text::new(
-                "contacts per period: intervals (filled), penetration maxima (rings); dashed: five",
-                (20, 10),
-                LABEL_FONT,
-            ))
-            .map_err(drawing)?;
-        let cells = cells.split_evenly((1, 4));
+        spectrum_panel(&b, d, layout)?;
+        let (title, cells) = scans.split_vertically(title_height);
+        for (i, line) in lines.iter().enumerate() {
+            title
+                .draw(&Text::new(*line, (20, 10 + 28 * i as i32), LABEL_FONT))
+                .map_err(drawing)?;
+        }
+        let cells = layout.cells(&cells, 1, 4);
         scan_panel(&cells[0], "d₀ / free amplitude", "d₀ / A_free", &d.scan_gap, false)?;
         scan_panel(&cells[1], "stop stiffness", "k / k₁", &d.scan_k, true)?;
         scan_panel(&cells[2], "forcing frequency", "ω / (β₁⁻)²", &d.scan_omega, false)?;

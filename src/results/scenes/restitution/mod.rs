@@ -299,6 +299,6 @@ impl Scene for RestitutionLaws {
     }
 
     fn render(d: &RestitutionData) -> Result<Rendered, crate::results::render::RenderError> {
-        Ok(Rendered::new(render::plot(d)?, render::table(d)))
+        Rendered::drawn(|layout| render::plot(d, layout), render::table(d))
     }
 }

@@ -7,18 +7,19 @@ use crate::results::render::{
     cell, draw_legend, drawing, log_log_mesh, markdown_table, palette, solid_key, RenderError,
     CAPTION_FONT, WIDTH,
 };
+use crate::results::narrow::Layout;
 use plotters::prelude::*;
 
 /// The SVG plot.
 ///
 /// # Errors
 /// [`RenderError`] when drawing fails.
-pub fn plot(d: &RestitutionData) -> Result<String, RenderError> {
+pub fn plot(d: &RestitutionData, layout: Layout) -> Result<String, RenderError> {
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (WIDTH, 500)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, layout.grid_size(1, 2, 500)).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
-        let (left, right) = root.split_horizontally(WIDTH / 2);
+        let (left, right) = layout.beside(&root, WIDTH / 2, layout.panel_height(WIDTH / 2, 500));
         let ks = &d.params.nordmark_k;
         let gaps = d.nordmark.iter().flat_map(|n| n.gap.iter().cloned());
         let (lo, hi) = gaps.fold((f64::INFINITY, 0.0f64), |(a, b), g| (a.min(g), b.max(g)));

@@ -586,9 +586,6 @@ impl Scene for SideBySide {
 
     fn render(d: &SideBySideData) -> Result<Rendered, crate::results::render::RenderError> {
         Ok(Rendered {
-            svg: render::plot(d)?,
-            table: render::headline(d),
-            panels: Vec::new(),
             extra_tables: vec![
                 ("setup", render::setup(d)),
                 ("problems", render::problems(d)),
@@ -596,6 +593,7 @@ impl Scene for SideBySide {
                 ("orbits", render::orbits(d)),
                 ("runs", render::runs(d)),
             ],
+            ..Rendered::drawn(|layout| render::plot(d, layout), render::headline(d))?
         })
     }
 }

@@ -5,8 +5,9 @@ use super::{best_error, OrbitData, ProblemData, Series, SideBySideData};
 use crate::base::report::format_sig;
 use crate::results::render::{
     power_of_ten,
-    drawing, markdown_table, palette, styled_mesh, RenderError, CAPTION_FONT, LABEL_FONT, WIDTH,
+    drawing, markdown_table, palette, styled_mesh, RenderError, CAPTION_FONT, LABEL_FONT,
 };
+use crate::results::narrow::Layout;
 use plotters::prelude::*;
 
 /// Errors below this are drawn at it (round-off).
@@ -132,14 +133,26 @@ fn draw_ours(chart: &mut Chart, at: (f64, f64)) -> Result<(), RenderError> {
 }
 
 /// The legend strip across the top.
-fn legend(area: &DrawingArea<SVGBackend, plotters::coord::Shift>) -> Result<(), RenderError> {
+/// Height of the legend strip: seven entries in three columns, and the markers' row; or
+/// one entry per row when narrow.
+fn legend_height(layout: Layout) -> u32 {
+    match layout {
+        Layout::Wide => 120,
+        Layout::Narrow => 18 + 10 * 28,
+    }
+}
+
+fn legend(
+    area: &DrawingArea<SVGBackend, plotters::coord::Shift>,
+    layout: Layout,
+) -> Result<(), RenderError> {
     let font = LABEL_FONT.into_font().color(&BLACK);
     let mut entries: Vec<(String, Option<RGBColor>)> = STYLES
         .iter()
         .map(|(_, label, i)| (label.to_string(), Some(palette(*i))))
         .collect();
     entries.insert(0, ("this project".into(), None));
-    let per_row = 3;
+    let per_row = if layout == Layout::Wide { 3 } else { 1 };
     for (i, (label, colour)) in entries.iter().enumerate() {
         let (x, y) = (20 + (i % per_row) as i32 * 330, 18 + (i / per_row) as i32 * 28);
         match colour {
@@ -155,17 +168,24 @@ fn legend(area: &DrawingArea<SVGBackend, plotters::coord::Shift>) -> Result<(), 
         area.draw(&Text::new(label.clone(), (x + 34, y - 9), font.clone()))
             .map_err(drawing)?;
     }
-    // the markers
-    let y = 18 + 3 * 28;
+    // the markers: in a row under the entries, or one per row
+    let rows = entries.len().div_ceil(per_row) as i32;
+    let at = |i: i32| match layout {
+        Layout::Wide => (33 + 330 * i, 18 + rows * 28),
+        Layout::Narrow => (33, 18 + (rows + i) * 28),
+    };
     let grey = RGBColor(90, 90, 90);
-    area.draw(&Circle::new((33, y), 4, grey.filled())).map_err(drawing)?;
-    area.draw(&Text::new("every event found", (54, y - 9), font.clone()))
+    let (x, y) = at(0);
+    area.draw(&Circle::new((x, y), 4, grey.filled())).map_err(drawing)?;
+    area.draw(&Text::new("every event found", (x + 21, y - 9), font.clone()))
         .map_err(drawing)?;
-    area.draw(&Circle::new((363, y), 5, grey.stroke_width(2))).map_err(drawing)?;
-    area.draw(&Text::new("events missed or added", (384, y - 9), font.clone()))
+    let (x, y) = at(1);
+    area.draw(&Circle::new((x, y), 5, grey.stroke_width(2))).map_err(drawing)?;
+    area.draw(&Text::new("events missed or added", (x + 21, y - 9), font.clone()))
         .map_err(drawing)?;
-    area.draw(&Cross::new((693, y), 6, grey.stroke_width(2))).map_err(drawing)?;
-    area.draw(&Text::new("stopped early (drawn at the top)", (714, y - 9), font))
+    let (x, y) = at(2);
+    area.draw(&Cross::new((x, y), 6, grey.stroke_width(2))).map_err(drawing)?;
+    area.draw(&Text::new("stopped early (drawn at the top)", (x + 21, y - 9), font))
         .map_err(drawing)?;
     Ok(())
 }
@@ -177,14 +197,17 @@ fn legend(area: &DrawingArea<SVGBackend, plotters::coord::Shift>) -> Result<(), 
 ///
 /// # Panics
 /// Never: every method it looks up ("DOP853", "Radau", "LSODA") is in the style table.
-pub fn plot(d: &SideBySideData) -> Result<String, RenderError> {
+pub fn plot(d: &SideBySideData, layout: Layout) -> Result<String, RenderError> {
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (WIDTH, 1520)).into_drawing_area();
+        let strip = legend_height(layout);
+        let (width, body_height) = layout.grid_size(3, 2, 1400);
+        let root = SVGBackend::with_string(&mut svg, (width, strip + body_height))
+            .into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
-        let (top, body) = root.split_vertically(120);
-        legend(&top)?;
-        let panels = body.split_evenly((3, 2));
+        let (top, body) = root.split_vertically(strip);
+        legend(&top, layout)?;
+        let panels = layout.cells(&body, 3, 2);
         let times = d
             .problems
             .iter()

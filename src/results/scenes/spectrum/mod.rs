@@ -347,6 +347,6 @@ impl Scene for Spectrum {
     }
 
     fn render(d: &SpectrumData) -> Result<Rendered, crate::results::render::RenderError> {
-        Ok(Rendered::new(render::plot(d)?, render::table(d)))
+        Rendered::drawn(|layout| render::plot(d, layout), render::table(d))
     }
 }

@@ -7,6 +7,7 @@ use crate::results::render::{
     cell, dashed_key, draw_legend, drawing, markdown_table, palette, solid_key, styled_mesh,
     RenderError, CAPTION_FONT, LABEL_FONT, WIDTH,
 };
+use crate::results::narrow::Layout;
 use crate::base::report::format_sig;
 use super::SpectrumData;
 use plotters::element::DashedPathElement;
@@ -17,12 +18,21 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 ///
 /// # Errors
 /// [`RenderError`] when drawing fails.
-pub fn plot(d: &SpectrumData) -> Result<String, RenderError> {
+pub fn plot(d: &SpectrumData, layout: Layout) -> Result<String, RenderError> {
+    // the left panel 600 px wide, the right 400 (side by side) or stacked
+    let (top, bottom) = (
+        layout.panel_height(600, 520),
+        layout.panel_height(WIDTH - 600, 520),
+    );
+    let size = match layout {
+        Layout::Wide => (WIDTH, 520),
+        Layout::Narrow => (layout.width(), top + bottom),
+    };
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (WIDTH, 520)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
-        let (left, right) = root.split_horizontally(600);
+        let (left, right) = layout.beside(&root, 600, top);
         let (lo, hi) = d.params.k_over_k1_range;
         let ymax = d.frequency_pinned.last().copied().unwrap_or(10.0) * 1.3;
         let mut chart = ChartBuilder::on(&left)
@@ -35,6 +45,8 @@ pub fn plot(d: &SpectrumData) -> Result<String, RenderError> {
             .map_err(drawing)?;
         styled_mesh(&mut chart)
             .x_desc("k / k₁")
+            // narrow: fewer ticks, so that the powers of ten do not touch
+            .x_labels(if layout == Layout::Wide { 10 } else { 5 })
             .x_label_formatter(&power_of_ten)
             .y_label_formatter(&|y| format!("{y:.0}"))
             .draw()

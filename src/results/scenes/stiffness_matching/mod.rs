@@ -496,9 +496,7 @@ impl Scene for StiffnessMatching {
     }
 
     fn render(d: &MatchingData) -> Result<Rendered, crate::results::render::RenderError> {
-        let (svg, panels) = render::plot(d)?;
-        let mut r = Rendered::new(svg, render::table(d));
-        r.panels = panels;
+        let mut r = Rendered::drawn(|layout| render::plot(d, layout), render::table(d))?;
         r.extra_tables.push(("needed", render::needed_table(d)));
         r.extra_tables.push(("two-basis", render_two_basis::table(d)));
         r.extra_tables.push(("losses", render_two_basis::losses_table(d, false)));

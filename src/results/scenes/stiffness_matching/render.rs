@@ -1,7 +1,7 @@
 //! Stiffness matching: errors against N and against the element count, N*(k) with the
 //! criterion, and the post-contact velocity profiles at finite k and in the rigid limit.
 
-use crate::results::narrow::{self, Panel};
+use crate::results::narrow::Layout;
 use super::MatchingData;
 use crate::analysis::convergence::Needed;
 use crate::results::render::{
@@ -19,32 +19,55 @@ const SHOWN: &str = "exit tip velocity";
 ///
 /// # Errors
 /// [`RenderError`] when drawing fails.
-pub fn plot(d: &MatchingData) -> Result<(String, Vec<Panel>), RenderError> {
+pub fn plot(d: &MatchingData, layout: Layout) -> Result<String, RenderError> {
+    // four rows of 500 px: two half panels, the full-width N*(k), two, two
+    let (half, full) = (layout.panel_height(500, 500), layout.panel_height(WIDTH, 500));
+    let size = match layout {
+        Layout::Wide => (WIDTH, 2000),
+        Layout::Narrow => (layout.width(), 6 * half + full),
+    };
     let mut svg = String::new();
-    let panels;
     {
-        let root = SVGBackend::with_string(&mut svg, (WIDTH, 2000)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
-        let rows = root.split_evenly((4, 1));
-        let top = rows[0].split_evenly((1, 2));
-        errors(&top[0], d, Ladder::Galerkin)?;
-        errors(&top[1], d, Ladder::Elements)?;
-        needed(&rows[1], d)?;
-        let third = rows[2].split_evenly((1, 2));
-        profiles(&third[0], d, true)?;
-        profiles(&third[1], d, false)?;
-        let bottom = rows[3].split_evenly((1, 2));
-        errors(&bottom[0], d, Ladder::TwoBasis)?;
-        super::render_two_basis::losses(&bottom[1], d)?;
+        // the seven panels in reading order
+        let areas = match layout {
+            Layout::Wide => {
+                let rows = root.split_evenly((4, 1));
+                let pair = |r: usize| rows[r].split_evenly((1, 2));
+                let (top, third, bottom) = (pair(0), pair(2), pair(3));
+                vec![
+                    top[0].clone(),
+                    top[1].clone(),
+                    rows[1].clone(),
+                    third[0].clone(),
+                    third[1].clone(),
+                    bottom[0].clone(),
+                    bottom[1].clone(),
+                ]
+            }
+            Layout::Narrow => {
+                let heights = [half, half, full, half, half, half];
+                let breaks: Vec<u32> = heights
+                    .iter()
+                    .scan(0, |y, h| {
+                        *y += h;
+                        Some(*y)
+                    })
+                    .collect();
+                root.split_by_breakpoints([] as [u32; 0], breaks)
+            }
+        };
+        errors(&areas[0], d, Ladder::Galerkin)?;
+        errors(&areas[1], d, Ladder::Elements)?;
+        needed(&areas[2], d)?;
+        profiles(&areas[3], d, true)?;
+        profiles(&areas[4], d, false)?;
+        errors(&areas[5], d, Ladder::TwoBasis)?;
+        super::render_two_basis::losses(&areas[6], d)?;
         root.present().map_err(drawing)?;
-        let halves = [&top[0], &top[1]];
-        panels = halves
-            .into_iter()
-            .chain([&rows[1], &third[0], &third[1], &bottom[0], &bottom[1]])
-            .map(narrow::panel)
-            .collect();
     }
-    Ok((svg, panels))
+    Ok(svg)
 }
 
 /// Which refinement ladder.

@@ -463,14 +463,12 @@ impl Scene for WorkPrecision {
 
     fn render(d: &WorkPrecisionData) -> Result<Rendered, crate::results::render::RenderError> {
         Ok(Rendered {
-            svg: render::plot(d)?,
-            table: render::table(d),
-            panels: Vec::new(),
             extra_tables: vec![
                 ("costs", render::costs_table(d)),
                 ("timing", render::timing_summary(d)),
                 ("scaling", render::scaling_table(d)),
             ],
+            ..Rendered::drawn(|layout| render::plot(d, layout), render::table(d))?
         })
     }
 }

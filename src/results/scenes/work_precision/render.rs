@@ -4,10 +4,11 @@
 use crate::results::render::{
     power_of_ten,
     draw_legend, drawing, markdown_table, palette, solid_key, styled_mesh, RenderError,
-    CAPTION_FONT, WIDTH,
+    CAPTION_FONT,
 };
 use crate::base::report::format_sig;
 use super::WorkPrecisionData;
+use crate::results::narrow::Layout;
 use plotters::prelude::*;
 
 /// Errors below this are drawn at this floor (they are round-off).
@@ -17,14 +18,16 @@ const FLOOR: f64 = 1e-16;
 ///
 /// # Errors
 /// [`RenderError`] when drawing fails.
-pub fn plot(d: &WorkPrecisionData) -> Result<String, RenderError> {
+pub fn plot(d: &WorkPrecisionData, layout: Layout) -> Result<String, RenderError> {
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (WIDTH, 1000)).into_drawing_area();
+        // two rows of two panels: (a), (b) above (c), (d)
+        let (width, height) = layout.grid_size(2, 2, 1000);
+        let root = SVGBackend::with_string(&mut svg, (width, height)).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
-        let (top, bottom) = root.split_vertically(500);
-        scaling_panels(&bottom, d)?;
-        let panels = top.split_evenly((1, 2));
+        let (top, bottom) = root.split_vertically(height / 2);
+        scaling_panels(&bottom, d, layout)?;
+        let panels = layout.cells(&top, 1, 2);
         let (tmin, tmax) = d.points.iter().fold((f64::MAX, 0.0_f64), |(a, b), p| {
             (a.min(p.seconds), b.max(p.seconds))
         });
@@ -201,8 +204,9 @@ pub fn timing_summary(d: &WorkPrecisionData) -> String {
 fn scaling_panels(
     area: &DrawingArea<SVGBackend, plotters::coord::Shift>,
     d: &WorkPrecisionData,
+    layout: Layout,
 ) -> Result<(), RenderError> {
-    let panels = area.split_evenly((1, 2));
+    let panels = layout.cells(area, 1, 2);
     let lines = [
         ("(c) cost against N, k = 100k₁", "N (modes)", &d.scaling.along_modes, true),
         ("(d) cost against k, N = 10", "k / k₁", &d.scaling.along_stiffness, false),
