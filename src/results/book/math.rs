@@ -81,6 +81,51 @@ pub fn latex_to_mathml(tex: &str, display: bool) -> Result<String> {
     Ok(safe)
 }
 
+/// The subscripted symbols of a LaTeX fragment (`k_2`, `r_E`, `r_{E}`: one Latin letter
+/// with a subscript of letters or digits) as a reader types them into the book's search —
+/// `k2 k_2 k₂`, `rE r_E` — in a span the page does not show (class `search-terms`): the
+/// search index is made from the text of the page, where MathML spells `k_2` as "k 2".
+/// Empty when the fragment has none.
+pub fn search_terms(tex: &str) -> String {
+    const DIGITS: [char; 10] = ['₀', '₁', '₂', '₃', '₄', '₅', '₆', '₇', '₈', '₉'];
+    let chars: Vec<char> = tex.chars().collect();
+    let mut terms: Vec<String> = Vec::new();
+    for i in 0..chars.len() {
+        let letter = chars[i];
+        let starts = i == 0 || !(chars[i - 1].is_ascii_alphabetic() || chars[i - 1] == '\\');
+        if !letter.is_ascii_alphabetic() || !starts || chars.get(i + 1) != Some(&'_') {
+            continue;
+        }
+        let sub: String = match chars.get(i + 2) {
+            Some('{') => chars[i + 3..].iter().take_while(|c| **c != '}').collect(),
+            Some(c) => c.to_string(),
+            None => continue,
+        };
+        if sub.is_empty() || sub.len() > 3 || !sub.chars().all(|c| c.is_ascii_alphanumeric()) {
+            continue;
+        }
+        let mut spellings = vec![format!("{letter}{sub}"), format!("{letter}_{sub}")];
+        if sub.chars().all(|c| c.is_ascii_digit()) {
+            let small: String = sub
+                .chars()
+                .filter_map(|c| c.to_digit(10).map(|d| DIGITS[d as usize]))
+                .collect();
+            spellings.push(format!("{letter}{small}"));
+        }
+        for s in spellings {
+            if !terms.contains(&s) {
+                terms.push(s);
+            }
+        }
+    }
+    if terms.is_empty() {
+        return String::new();
+    }
+    // (the underscore escaped, as in the MathML: markdown must not read it as emphasis)
+    let text = terms.join(" ").replace('_', "&#95;");
+    format!("<span class=\"search-terms\" aria-hidden=\"true\">{text}</span>")
+}
+
 /// Replaces math delimiters in markdown, leaving fenced code and inline code alone.
 /// `\$` is a literal dollar sign. Math may continue across line breaks (prose is wrapped),
 /// but not across a blank line.
@@ -117,6 +162,7 @@ pub fn convert_math(markdown: &str) -> Result<String> {
                         buf.push_str(&rest[..end]);
                         let tex = buf.split_whitespace().collect::<Vec<_>>().join(" ");
                         out.push_str(&latex_to_mathml(&tex, *display)?);
+                        out.push_str(&search_terms(&tex));
                         rest = &rest[end + delimiter.len()..];
                         open = None;
                     }
@@ -161,6 +207,20 @@ pub fn convert_math(markdown: &str) -> Result<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn subscripted_symbols_are_spelled_for_the_search() {
+        assert_eq!(
+            search_terms("k = 100k_1, \\tilde r_{E} \\beta_1 x^2"),
+            "<span class=\"search-terms\" aria-hidden=\"true\">k1 k&#95;1 k₁ rE r&#95;E</span>"
+        );
+        assert_eq!(search_terms("\\omega / (\\beta_1^-)^2"), "");
+        let html = convert_math("the $r_E$ map").unwrap();
+        assert!(
+            html.contains("</math><span class=\"search-terms\""),
+            "{html}"
+        );
+    }
 
     #[test]
     fn math_becomes_mathml_and_code_is_left_alone() {
