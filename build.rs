@@ -263,7 +263,8 @@ fn published_snapshots() -> String {
 }
 
 /// `key = "value"` lines of the `[package.metadata.citation]` table of Cargo.toml (the
-/// project's citation metadata: title, release date), as `CANTILEVER_CITATION_*` variables.
+/// project's citation metadata: title, release date, the archive's DOI), as
+/// `CANTILEVER_CITATION_*` variables.
 fn citation_metadata() {
     let toml = std::fs::read_to_string("Cargo.toml").unwrap_or_default();
     let mut inside = false;
@@ -279,7 +280,11 @@ fn citation_metadata() {
             found.insert(key.trim().to_string(), value.to_string());
         }
     }
-    for (key, var) in [("title", "TITLE"), ("date-released", "DATE_RELEASED")] {
+    for (key, var) in [
+        ("title", "TITLE"),
+        ("date-released", "DATE_RELEASED"),
+        ("doi", "DOI"),
+    ] {
         let value = found.get(key).cloned().unwrap_or_default();
         println!("cargo:rustc-env=CANTILEVER_CITATION_{var}={value}");
     }
@@ -287,11 +292,32 @@ fn citation_metadata() {
 
 fn main() {
     citation_metadata();
-    let commit = run("git", &["rev-parse", "HEAD"]).unwrap_or_else(|| "unknown".into());
-    // dirty: tracked files changed (untracked ones, e.g. generated book pages, do not count)
-    let dirty = match run("git", &["status", "--porcelain", "--untracked-files=no"]) {
-        Some(s) => (!s.is_empty()).to_string(),
-        None => "unknown".into(),
+    // the commit of this crate's own repository: a source unpacked from an archive inside
+    // another repository must not take that repository's commit, but the one the archive
+    // recorded (`cantilever archive` writes it into ARCHIVE_COMMIT)
+    let here = std::env::var("CARGO_MANIFEST_DIR").map(PathBuf::from).ok();
+    let top = run("git", &["rev-parse", "--show-toplevel"]).map(PathBuf::from);
+    let same = |a: &PathBuf, b: &PathBuf| a.canonicalize().ok() == b.canonicalize().ok();
+    let own_repository = matches!((&here, &top), (Some(h), Some(t)) if same(h, t));
+    let (commit, dirty) = if own_repository {
+        let commit = run("git", &["rev-parse", "HEAD"]).unwrap_or_else(|| "unknown".into());
+        // dirty: tracked files changed (untracked ones, e.g. generated book pages, do not
+        // count)
+        let dirty = match run("git", &["status", "--porcelain", "--untracked-files=no"]) {
+            Some(s) => (!s.is_empty()).to_string(),
+            None => "unknown".into(),
+        };
+        (commit, dirty)
+    } else {
+        // an unpacked archive: its commit, and no way to tell whether files were edited
+        let recorded = std::fs::read_to_string("ARCHIVE_COMMIT")
+            .ok()
+            .map(|s| s.trim().to_string())
+            .filter(|s| s.len() == 40 && s.bytes().all(|b| b.is_ascii_hexdigit()));
+        (
+            recorded.unwrap_or_else(|| "unknown".into()),
+            "unknown".into(),
+        )
     };
     let rustc = std::env::var("RUSTC").unwrap_or_else(|_| "rustc".into());
     let toolchain = run(&rustc, &["--version"]).unwrap_or_else(|| "unknown".into());
@@ -310,6 +336,7 @@ fn main() {
         "Cargo.toml",
         "Cargo.lock",
         "tests/snapshots",
+        "ARCHIVE_COMMIT",
     ] {
         if std::path::Path::new(path).exists() {
             println!("cargo:rerun-if-changed={path}");

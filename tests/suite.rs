@@ -13,6 +13,7 @@ mod adversarial_round3;
 mod adversarial_round3_errors;
 mod adversarial_round3_files;
 mod api;
+mod archive;
 mod atlas;
 mod atlas_curves;
 mod basins;

@@ -19,6 +19,23 @@ pub const SOFTWARE_AUTHORS: &str = env!("CARGO_PKG_AUTHORS");
 /// The date of the release (Cargo.toml's `[package.metadata.citation] date-released`).
 pub const DATE_RELEASED: &str = env!("CANTILEVER_CITATION_DATE_RELEASED");
 
+/// The DOI of the archived release, once one exists (Cargo.toml's
+/// `[package.metadata.citation] doi`; empty until an archive service has given one).
+pub fn archive_doi() -> Option<&'static str> {
+    Some(env!("CANTILEVER_CITATION_DOI")).filter(|d| !d.is_empty())
+}
+
+/// What the citations say of the archive: its DOI, or plainly that there is none yet.
+pub fn archive_statement() -> String {
+    match archive_doi() {
+        Some(d) => format!("Archived release: doi:{d}."),
+        None => "No archived release and no DOI exist yet: cite the version and the commit \
+                 (`cantilever archive` writes a deposit for an archive service; its DOI will \
+                 be given here)."
+            .to_string(),
+    }
+}
+
 /// The repository's address, if it has been published (Cargo.toml's `repository`).
 pub fn repository() -> Option<&'static str> {
     Some(env!("CARGO_PKG_REPOSITORY")).filter(|r| !r.is_empty())
@@ -68,8 +85,11 @@ pub fn commit(p: &Provenance) -> String {
 /// The software, as plain text, for the build that produced `p`.
 pub fn software_plain(p: &Provenance) -> String {
     let url = repository().map(|r| format!(" {r}.")).unwrap_or_default();
+    let doi = archive_doi()
+        .map(|d| format!(" doi:{d}."))
+        .unwrap_or_default();
     format!(
-        "{} ({}). {SOFTWARE_TITLE}. Version {} (commit {}).{url}",
+        "{} ({}). {SOFTWARE_TITLE}. Version {} (commit {}).{url}{doi}",
         authors().collect::<Vec<_>>().join(", "),
         year(),
         p.version,
@@ -81,7 +101,10 @@ pub fn software_plain(p: &Provenance) -> String {
 pub fn software_bibtex(p: &Provenance) -> String {
     let url = repository()
         .map(|r| format!("\n  url     = {{{r}}},"))
-        .unwrap_or_default();
+        .unwrap_or_default()
+        + &archive_doi()
+            .map(|d| format!("\n  doi     = {{{d}}},"))
+            .unwrap_or_default();
     format!(
         "@software{{impacting_cantilever,
   author  = {{{}}},
@@ -142,6 +165,13 @@ type: software
     );
     if let Some(r) = repository() {
         s += &format!("repository-code: {r}\n");
+    }
+    match archive_doi() {
+        Some(d) => s += &format!("doi: {d}\n"),
+        None => {
+            s += "# No archived release and no DOI exist yet (`cantilever archive` writes a\n\
+                  # deposit); its DOI goes into Cargo.toml's [package.metadata.citation] doi.\n"
+        }
     }
     s += "license:
   - MIT

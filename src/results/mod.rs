@@ -1,5 +1,7 @@
 //! The paper's results: one scene per result, their plots, tables, citations and comparisons, and the book.
 
+#[cfg(feature = "cli")]
+pub mod archive;
 pub mod citation;
 #[cfg(feature = "plots")]
 pub mod cite;

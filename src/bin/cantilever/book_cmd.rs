@@ -61,3 +61,40 @@ pub(super) fn book_command(_: &std::path::Path, _: Option<&[String]>) -> Result<
             .into(),
     ))
 }
+
+/// The `archive` command: [`impacting_cantilever::results::archive::write`] from the
+/// checkout the command runs in.
+pub(super) fn archive_command(
+    out: &std::path::Path,
+    book_dir: &std::path::Path,
+) -> Result<(), Failure> {
+    use super::emit;
+    use impacting_cantilever::results::archive::{self, ArchiveError};
+    let a = archive::write(std::path::Path::new("."), book_dir, out).map_err(|e| match e {
+        ArchiveError::Refused(s) => Failure::Refused(s),
+        ArchiveError::Failed(s) => Failure::Other(s),
+    })?;
+    let total: u64 = a.files.iter().map(|f| f.1).sum();
+    let part = |prefix: &str| -> u64 {
+        a.files
+            .iter()
+            .filter(|f| f.0.starts_with(prefix))
+            .map(|f| f.1)
+            .sum()
+    };
+    let mb = |b: u64| b as f64 / 1e6;
+    outln!(
+        "wrote {}: {} files, {:.1} MB (source {:.1} MB, book {:.1} MB), commit {}",
+        a.dir.display(),
+        a.files.len(),
+        mb(total),
+        mb(part(&archive::source_name())),
+        mb(part("book/")),
+        a.commit
+    );
+    outln!(
+        "deposit the folder with an archive service (Zenodo reads .zenodo.json); put the DOI \
+         it gives into Cargo.toml's [package.metadata.citation] doi"
+    );
+    Ok(())
+}

@@ -283,6 +283,18 @@ enum Command {
         #[arg(long, value_delimiter = ',')]
         only: Option<Vec<String>>,
     },
+    /// Write a deposit-ready archive of this build for an archive service (which gives it a
+    /// DOI): the source at the commit with Cargo.lock, the published numbers, the built
+    /// book, CITATION.cff, .zenodo.json, a README and a SHA-256 manifest. Needs a clean
+    /// checkout built at its HEAD, and the book built by this build (`cantilever book`).
+    Archive {
+        /// The folder to create (it must not exist).
+        #[arg(long)]
+        out: PathBuf,
+        /// The book's root, holding its generated numbers and its built pages.
+        #[arg(long, default_value = "book")]
+        book_dir: PathBuf,
+    },
 }
 
 mod output;
@@ -307,7 +319,7 @@ macro_rules! errln {
 mod book_cmd;
 mod modes_cmd;
 mod scene_cmd;
-use book_cmd::book_command;
+use book_cmd::{archive_command, book_command};
 use modes_cmd::{modes_command, modes_needed_command};
 
 /// On SIGINT, SIGTERM or SIGHUP (a closed terminal), deletes the temporary files of any
@@ -455,6 +467,7 @@ impl Command {
             Command::AtlasMerge { .. } => "atlas-merge",
             Command::Diff { .. } => "diff",
             Command::Book { .. } => "book",
+            Command::Archive { .. } => "archive",
         }
     }
 }
@@ -602,6 +615,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             }
         }
         Command::Book { book_dir, only } => book_command(&book_dir, only.as_deref()),
+        Command::Archive { out, book_dir } => archive_command(&out, &book_dir),
     }
 }
 

@@ -450,10 +450,11 @@ pub use crate::results::render::readable_text as for_html;
 pub fn citation(provenance: &Provenance) -> String {
     use crate::results::citation as c;
     format!(
-        "**The software** (this build):\n\n> {}\n\n```bibtex\n{}\n```\n\n\
+        "**The software** (this build):\n\n> {}\n\n```bibtex\n{}\n```\n\n{}\n\n\
          **The paper:**\n\n> {}\n\n```bibtex\n{}\n```\n",
         c::software_plain(provenance),
         c::software_bibtex(provenance),
+        c::archive_statement(),
         c::PAPER_PLAIN.replace(
             "doi:10.1098/rsta.2012.0434",
             "[doi:10.1098/rsta.2012.0434](https://doi.org/10.1098/rsta.2012.0434)"
