@@ -13,7 +13,7 @@ use crate::base::report::{pretty, round_up_one_figure, unit_meaning, Cited, KeyN
 use crate::error::ParameterError;
 use crate::results::citation;
 use crate::results::diff;
-use crate::results::scene::{self, Entry, Resolution, SceneOutput, Verdict};
+use crate::results::scene::{self, Entry, Group, Resolution, SceneOutput, Verdict};
 
 /// What a citation says: the scene, where its numbers come from and the keys asked for.
 pub struct Citation {
@@ -97,16 +97,32 @@ impl Citation {
         })
     }
 
-    /// The sentence to paste for one key number: the number and where it comes from.
+    /// The sentence to paste for one key number: the number and where it comes from. A
+    /// number of one of the paper's results is the paper's, with its parameters; a number
+    /// computed beyond the paper (a new question, the experiment's validation, a method's
+    /// check) is this software's, for the paper's model.
     pub fn sentence(&self, key: &str, value: &KeyValue) -> String {
-        format!(
-            "{key} = {} ({}, parameters of {}; impacting-cantilever {}, commit {})",
-            decimal(value),
-            citation::PAPER_SHORT,
-            self.spec.paper(),
+        let build = format!(
+            "impacting-cantilever {}, commit {}",
             self.provenance.version,
             citation::commit(&self.provenance),
-        )
+        );
+        let of_the_paper =
+            self.spec.group() == Group::Paper && !self.spec.paper().contains("beyond");
+        match of_the_paper {
+            true => format!(
+                "{key} = {} ({}, parameters of {}; {build})",
+                decimal(value),
+                citation::PAPER_SHORT,
+                self.spec.paper(),
+            ),
+            false => format!(
+                "{key} = {} (computed by {build}, for the model of {}; {})",
+                decimal(value),
+                citation::PAPER_SHORT,
+                self.spec.summary(),
+            ),
+        }
     }
 
     /// The command that reproduces the citation by computing the number afresh.
@@ -187,8 +203,35 @@ pub fn unknown_key(scene: &str, key: &str, all: &KeyNumbers) -> ParameterError {
     ParameterError::new("KEY", key, &format!("a key number of {scene} ({hint})"))
 }
 
+/// How the values are rounded, said once at the head of a citation.
+pub const ROUNDING_RULE: &str =
+    "Each value is rounded to the nearest in its last digit shown. Where \
+the computation is more precise than the digits kept, the ± is that rounding's bound, half a unit \
+of the last digit, and the computed value's own accuracy is stated beside it; otherwise the ± is \
+the computation's uncertainty, rounded up to one figure.";
+
+/// The ± of a float: half a unit of its last digit when that bounds the rounding and the
+/// method together (the value is as precise as its digits, whatever the luck of the
+/// rounding: 0.25380 and 0.20479 both read ± 0.000005), else the stated uncertainty.
+fn plus_minus(c: &Cited) -> f64 {
+    let half_unit = if c.value == 0.0 {
+        0.0
+    } else {
+        let exponent = c.value.abs().log10().floor() as i32 - c.digits as i32 + 1;
+        0.5 * 10f64.powi(exponent)
+    };
+    let rounding = (c.value - c.computed).abs();
+    let method = c.uncertainty.value - rounding;
+    let rounded = c.uncertainty.basis.starts_with("the rounding to");
+    if rounded && half_unit > 0.0 && rounding + method.max(0.0) <= half_unit {
+        half_unit
+    } else {
+        round_up_one_figure(c.uncertainty.value)
+    }
+}
+
 /// The value as a reader writes it: decimal between 10⁻³ and 10⁶ (× 10ⁿ beyond), ± its
-/// uncertainty to one figure rounded up, and its unit.
+/// uncertainty ([`plus_minus`]), and its unit.
 fn decimal(v: &KeyValue) -> String {
     let unit = |u: &str| {
         if u.is_empty() {
@@ -199,10 +242,7 @@ fn decimal(v: &KeyValue) -> String {
     };
     match v {
         KeyValue::Float(c) if c.uncertainty.value > 0.0 => {
-            let (value, u) = (
-                pretty(c.value, c.digits),
-                round_up_one_figure(c.uncertainty.value),
-            );
+            let (value, u) = (pretty(c.value, c.digits), plus_minus(c));
             // a plain value takes its ± in the same notation, to its own last place or
             // coarser: 0.7173 ± 0.0001, not 0.7173 ± 10⁻⁴
             let u = match value.split_once('.') {
@@ -263,6 +303,7 @@ impl Citation {
         );
         s += &format!("parameters   {params}\n");
         s += &format!("method       {}\n", c.spec.method());
+        s += &format!("rounding     {ROUNDING_RULE}\n");
         if let Some(v) = &c.verdict {
             s += &format!("verdict      {}: {}\n", v.outcome, v.evidence);
         }
@@ -304,6 +345,7 @@ impl Citation {
             "verdict": c.verdict,
             "key_numbers": c.keys.to_json(),
             "sentences": sentences,
+            "rounding_rule": ROUNDING_RULE,
             "reproduce": c.reproduce(),
             "cite": {
                 "software": {

@@ -222,6 +222,7 @@ pub fn build_only(
         .map(|o| o.provenance.clone())
         .unwrap_or_else(|| Provenance::now("book"));
     scene::write_atomically(&generated.join("citation.md"), &citation(&provenance))?;
+    scene::write_atomically(&generated.join("cite-example.md"), &cite_example())?;
     let schematic = crate::results::schematic::svg().map_err(|e| anyhow::anyhow!("{e}"))?;
     scene::write_atomically(&generated.join("schematic.svg"), &schematic)?;
     let t = Instant::now();
@@ -445,6 +446,23 @@ fn human_size(bytes: u64) -> String {
 }
 
 pub use crate::results::render::readable_text as for_html;
+
+/// What `cantilever cite fig4 "N=3 impact_velocity_1"` prints first: the sentence to
+/// paste, from the numbers published with this build (empty if they do not parse).
+fn cite_example() -> String {
+    let Ok(spec) = crate::results::scenes::find("fig4") else {
+        return String::new();
+    };
+    let key = "N=3 impact_velocity_1";
+    match crate::results::cite::Citation::published(spec, Some(key)) {
+        Ok(c) => {
+            let text = c.to_text();
+            let sentence = text.lines().next().unwrap_or_default();
+            format!("```text\n{sentence}\n```\n")
+        }
+        Err(_) => String::new(),
+    }
+}
 
 /// How to cite the software that built this book, and the paper (plain text and BibTeX).
 pub fn citation(provenance: &Provenance) -> String {
