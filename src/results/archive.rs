@@ -1,7 +1,7 @@
 //! A deposit-ready archive of this build, for an archive service that gives it a DOI: the
 //! source at the commit (with `Cargo.lock`), the published numbers, the built book,
 //! `CITATION.cff`, the service's metadata (`.zenodo.json`), a README and a SHA-256 manifest
-//! of every file. `cantilever archive --out DIR` calls [`write`].
+//! of every file. `cantilever archive --out DIR` calls [`write()`].
 //!
 //! Only a build of a clean checkout can be archived, with the book built by that build: the
 //! archive's numbers, book and source must be of one commit. The source comes from
