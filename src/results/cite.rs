@@ -357,3 +357,40 @@ impl Citation {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::base::report::Uncertainty;
+
+    #[test]
+    fn a_rounding_bound_reads_as_half_a_unit_of_the_last_digit() {
+        // equal precision, different rounding luck: the same ±
+        let lucky = Cited::new(0.253_800_2, 5, Uncertainty::new(2e-12, "round-off"), "");
+        let unlucky = Cited::new(0.204_794_9, 5, Uncertainty::new(2e-12, "round-off"), "");
+        assert_eq!(decimal(&KeyValue::Float(lucky)), "0.25380 ± 0.000005");
+        assert_eq!(decimal(&KeyValue::Float(unlucky)), "0.20479 ± 0.000005");
+        // a method's uncertainty larger than the rounding stays the ±, rounded up
+        let wide = Cited::new(0.912_345, 4, Uncertainty::new(7.7e-5, "a step in N"), "");
+        assert_eq!(decimal(&KeyValue::Float(wide)), "0.9123 ± 0.00008");
+    }
+
+    #[test]
+    fn a_number_beyond_the_paper_is_credited_to_the_software() {
+        let find = |n| crate::results::scenes::find(n).unwrap();
+        let fig4 = Citation::published(find("fig4"), Some("N=3 impact_velocity_1")).unwrap();
+        let (k, v) = &fig4.keys.0[0];
+        let s = fig4.sentence(k, v);
+        assert!(
+            s.contains("Melcher, Champneys & Wagg 2013, parameters of Fig 4"),
+            "{s}"
+        );
+        let atlas = Citation::published(find("atlas"), None).unwrap();
+        let (k, v) = &atlas.keys.0[0];
+        let s = atlas.sentence(k, v);
+        assert!(
+            s.contains("(computed by impacting-cantilever") && !s.contains("parameters of"),
+            "{s}"
+        );
+    }
+}

@@ -79,7 +79,12 @@ impl NumbersPreprocessor {
                     .seconds
                     .get(scene)
                     .ok_or_else(|| anyhow::anyhow!("no time known for scene `{scene}`"))?;
-                out.push_str(&format!("{secs:.0} s"));
+                // whole seconds, or one figure below ten (a fast scene is not "0 s")
+                out.push_str(&if *secs >= 9.5 {
+                    format!("{secs:.0} s")
+                } else {
+                    format!("{} s", crate::base::report::pretty(secs.max(1e-3), 1))
+                });
                 rest = &after[end + 2..];
                 continue;
             }
