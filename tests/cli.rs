@@ -278,10 +278,17 @@ fn cite_prints_the_number_its_uncertainty_provenance_and_both_citations() {
     let (code, out, err) = cantilever(&["cite", "fig3-d", "phi1(1)", "--recompute"]);
     assert_eq!(code, 0, "{err}");
     let first = out.lines().next().unwrap();
-    assert!(first.starts_with("phi1(1) = 2.0000000 ± "), "{first}");
+    // the number by its name in words; the key to look it up by below
+    assert!(
+        first.starts_with("The first mode's shape φ₁ at s = 1: 2.0000000 ± "),
+        "{first}"
+    );
     for needed in [
+        "key          phi1(1)\n",
         "uncertainty  ",
-        "parameters   {",
+        // the parameters in words and units, not JSON
+        "parameters   modal truncations N: 1, 2, 3, 10, 100\n",
+        "             coefficient of restitution r_e: 1\n",
         "method       ",
         "verdict      ",
         "computed by  impacting-cantilever ",
@@ -297,6 +304,14 @@ fn cite_prints_the_number_its_uncertainty_provenance_and_both_citations() {
     let keys = v["key_numbers"].as_object().unwrap();
     assert_eq!(keys.len(), 1);
     assert_eq!(keys["phi1(1)"]["value"], 2.0);
+    assert_eq!(
+        keys["phi1(1)"]["name"],
+        "the first mode's shape φ₁ at s = 1"
+    );
+    assert!(v["parameters_in_words"][0]
+        .as_str()
+        .unwrap()
+        .starts_with("modal truncations N: "));
     assert!(keys["phi1(1)"]["uncertainty"].as_f64().unwrap() > 0.0);
     assert_eq!(v["provenance"]["resolution"], "book");
     assert!(v["parameters"].is_object());
@@ -345,8 +360,17 @@ fn cite_prints_a_sentence_to_paste_from_the_published_numbers() {
     assert_eq!(code, 0, "{err}");
     let first = out.lines().next().unwrap();
     // decimal, ± one figure, the paper's figure, version and commit
-    assert!(first.starts_with("b r_E = 0."), "{first}");
-    let number = first.split(" (").next().unwrap();
+    assert!(
+        first.starts_with("The energetic coefficient of restitution r_E (Fig 6(b)): 0."),
+        "{first}"
+    );
+    let number = first
+        .split(": ")
+        .nth(1)
+        .unwrap()
+        .split(" (")
+        .next()
+        .unwrap();
     assert!(
         number.contains(" ± 0.0") && !number.contains('e'),
         "{first}"
@@ -362,7 +386,19 @@ fn cite_prints_a_sentence_to_paste_from_the_published_numbers() {
     assert_eq!(code, 0);
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
     assert_eq!(v["source"], "published");
-    assert!(v["sentences"][0].as_str().unwrap().starts_with("b r_E = "));
+    assert!(v["sentences"][0]
+        .as_str()
+        .unwrap()
+        .starts_with("The energetic coefficient of restitution r_E (Fig 6(b)): "));
+    // the name finds the number as the key does
+    let (code, by_name, _) = cantilever(&[
+        "cite",
+        "fig6",
+        "the energetic coefficient of restitution r_E (Fig 6(b))",
+        "--json",
+    ]);
+    assert_eq!(code, 0);
+    assert_eq!(by_name, out);
 }
 
 #[test]

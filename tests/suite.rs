@@ -36,6 +36,7 @@ mod layers;
 mod layout;
 mod lyapunov;
 mod motion;
+mod names;
 mod observation;
 mod peers;
 mod properties;

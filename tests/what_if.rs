@@ -110,7 +110,13 @@ fn a_what_if_is_recorded_and_diff_lists_what_moved() {
     assert_eq!(doc["parameters"]["zeta1"], 0.011);
     let (code, out, err) = cantilever(&["diff", "published", "d"], &dir);
     assert_eq!(code, 1, "{out}{err}");
-    assert!(out.contains("fig4 / N=1 impact_velocity_1"), "{out}");
+    assert!(
+        out.contains(
+            "fig4 / the first impact velocity of the periodic orbit (N = 1) \
+             (key \"N=1 impact_velocity_1\")"
+        ),
+        "{out}"
+    );
     assert!(out.contains("compared scene fig4 alone"), "{out}");
     assert!(!out.contains("scenes only in OLD"), "{out}");
     let _ = std::fs::remove_dir_all(&dir);

@@ -14,7 +14,8 @@ __all__ = ["number", "software", "software_bibtex", "paper", "paper_bibtex", "bu
 
 def number(scene: str, key: Optional[str] = None) -> str:
     """The citation of a key number the book publishes (all of the scene's when None), as
-    ``cantilever cite SCENE [KEY]`` prints it: a sentence to paste, the value ± uncertainty
+    ``cantilever cite SCENE [KEY]`` prints it (KEY: the key, or the number's name in words):
+    a sentence to paste, the value ± uncertainty
     with its basis and unit, the parameters, the method, the build, the reproduce command,
     and the software and the paper as plain text and BibTeX. Instant: the numbers are the
     ones committed with this build (checked against a recomputation by its test suite).

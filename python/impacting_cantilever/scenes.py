@@ -93,6 +93,11 @@ class Scene:
         self.key_numbers: dict[str, KeyValue] = {
             k: _key_value(v) for k, v in doc["key_numbers"].items()
         }
+        #: Each key number's name in words ("the first impact velocity of the periodic orbit
+        #: (N = 3)"), by its key: how a citation or a diff refers to it.
+        self.names: dict[str, str] = {
+            k: v.get("name", k) for k, v in doc["key_numbers"].items()
+        }
         #: {"outcome": "Reproduced" | …, "evidence": one line with our numbers}.
         self.verdict: dict[str, str] = doc["verdict"]
         #: version, commit, dirty, toolchain, date, resolution, fingerprint.

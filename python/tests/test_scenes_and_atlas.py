@@ -41,7 +41,9 @@ def test_scene_document_and_citation(cli: Cli, tmp_path: Path) -> None:
     p = cli.run("cite", "fig6", "b r_E")
     assert p.returncode == 0, p.stderr
     assert ic.citation.number("fig6", "b r_E") == p.stdout
-    assert ic.citation.number("fig6", "b r_E").startswith("b r_E = 0.7173 ± 0.0002 (")
+    assert ic.citation.number("fig6", "b r_E").startswith(
+        "The energetic coefficient of restitution r_E (Fig 6(b)): 0.7173 ± 0.0002 ("
+    )
     assert "@article{melcher2013impacting" in ic.citation.paper_bibtex()
     assert ic.citation.build()["commit"] == doc["provenance"]["commit"]
 

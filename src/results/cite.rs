@@ -13,6 +13,7 @@ use crate::base::report::{pretty, round_up_one_figure, unit_meaning, Cited, KeyN
 use crate::error::ParameterError;
 use crate::results::citation;
 use crate::results::diff;
+use crate::results::names;
 use crate::results::scene::{self, Entry, Group, Resolution, SceneOutput, Verdict};
 
 /// What a citation says: the scene, where its numbers come from and the keys asked for.
@@ -66,14 +67,16 @@ impl Citation {
                 ))
             })?
             .numbers;
+        let keys = pick(spec.name(), &all, key).map_err(CiteError::Key)?;
         Ok(Self {
             spec,
             params: readable(spec.params_json(Resolution::Book)),
             provenance: Provenance::of_scene(spec.module(), "book"),
             verdict: None,
             recomputed: false,
-            keys: pick(spec.name(), &all, key).map_err(CiteError::Key)?,
-            key: key.map(str::to_string),
+            // the key found (a number asked for by its name is reproduced by its key)
+            key: key.and_then(|_| keys.0.first()).map(|(k, _)| k.clone()),
+            keys,
         })
     }
 
@@ -92,9 +95,19 @@ impl Citation {
             provenance: out.provenance.clone(),
             verdict: Some(out.verdict.clone()),
             recomputed: true,
+            key: None,
             keys: pick(spec.name(), &out.key_numbers, key)?,
-            key: key.map(str::to_string),
-        })
+        }
+        .with_key_found(key.is_some()))
+    }
+
+    /// Records the key found when one was asked for (by key or by name).
+    fn with_key_found(mut self, asked: bool) -> Self {
+        self.key = asked
+            .then(|| self.keys.0.first())
+            .flatten()
+            .map(|(k, _)| k.clone());
+        self
     }
 
     /// The sentence to paste for one key number: the number and where it comes from. A
@@ -109,15 +122,16 @@ impl Citation {
         );
         let of_the_paper =
             self.spec.group() == Group::Paper && !self.spec.paper().contains("beyond");
+        let name = names::capitalised(&names::name(self.spec.name(), key));
         match of_the_paper {
             true => format!(
-                "{key} = {} ({}, parameters of {}; {build})",
+                "{name}: {} ({}, parameters of {}; {build})",
                 decimal(value),
                 citation::PAPER_SHORT,
                 self.spec.paper(),
             ),
             false => format!(
-                "{key} = {} (computed by {build}, for the model of {}; {})",
+                "{name}: {} (computed by {build}, for the model of {}; {})",
                 decimal(value),
                 citation::PAPER_SHORT,
                 self.spec.summary(),
@@ -146,7 +160,13 @@ fn pick(scene: &str, all: &KeyNumbers, key: Option<&str>) -> Result<KeyNumbers, 
         None => Ok(all.clone()),
         Some(k) => match all.get(k) {
             Some(v) => Ok(KeyNumbers(vec![(k.to_string(), v.clone())])),
-            None => Err(unknown_key(scene, k, all)),
+            // a number may also be asked for by its name
+            None => all
+                .0
+                .iter()
+                .find(|(key, _)| names::name(scene, key).eq_ignore_ascii_case(k.trim()))
+                .map(|(key, v)| KeyNumbers(vec![(key.clone(), v.clone())]))
+                .ok_or_else(|| unknown_key(scene, k, all)),
         },
     }
 }
@@ -270,14 +290,17 @@ impl Citation {
         if let [(k, v)] = c.keys.0.as_slice() {
             s += &format!("{}\n\n", c.sentence(k, v));
         }
+        let scene = c.spec.name();
         for (k, v) in &c.keys.0 {
-            s += &format!("{k} = {}\n", decimal(v));
+            // the name to read, the key to type
+            s += &format!("{}: {}\n", names::name(scene, k), decimal(v));
+            s += &format!("  key          {k}\n");
             let basis =
                 |x: &Cited| (x.uncertainty.value > 0.0).then(|| x.uncertainty.basis.clone());
             match v {
                 KeyValue::Float(x) if !one => {
                     if let Some(b) = basis(x) {
-                        s += &format!("  ({b})\n");
+                        s += &format!("  uncertainty  {b}\n");
                     }
                 }
                 KeyValue::Float(x) => {
@@ -294,14 +317,14 @@ impl Citation {
                 _ => {}
             }
         }
-        let params = serde_json::to_string(&c.params).unwrap_or_default();
+        let (params, _) = names::parameters::in_words(scene, &c.params);
         s += &format!(
             "\nscene        {} ({}): {}\n",
             c.spec.name(),
             c.spec.paper(),
             c.spec.summary()
         );
-        s += &format!("parameters   {params}\n");
+        s += &format!("parameters   {}\n", params.join("\n             "));
         s += &format!("method       {}\n", c.spec.method());
         s += &format!("rounding     {ROUNDING_RULE}\n");
         if let Some(v) = &c.verdict {
@@ -333,6 +356,9 @@ impl Citation {
         let c = self;
         let spec = c.spec;
         let sentences: Vec<String> = c.keys.0.iter().map(|(k, v)| c.sentence(k, v)).collect();
+        let mut numbers = c.keys.to_json();
+        names::annotate(spec.name(), &mut numbers);
+        let (in_words, _) = names::parameters::in_words(spec.name(), &c.params);
         serde_json::json!({
             "schema_version": scene::SCHEMA_VERSION,
             "scene": spec.name(),
@@ -340,10 +366,11 @@ impl Citation {
             "claim": spec.claim(),
             "method": spec.method(),
             "parameters": c.params,
+            "parameters_in_words": in_words,
             "provenance": c.provenance,
             "source": if c.recomputed { "recomputed" } else { "published" },
             "verdict": c.verdict,
-            "key_numbers": c.keys.to_json(),
+            "key_numbers": numbers,
             "sentences": sentences,
             "rounding_rule": ROUNDING_RULE,
             "reproduce": c.reproduce(),

@@ -155,6 +155,8 @@ pub struct Row {
     pub scene: String,
     /// The key.
     pub key: String,
+    /// The key number's name in words ([`crate::results::names`]).
+    pub name: String,
     /// The old value as printed (none if added).
     pub old: Option<String>,
     /// The new value as printed (none if removed).
@@ -260,6 +262,7 @@ pub fn compare_numbers(scene: &str, old: &KeyNumbers, new: &KeyNumbers) -> Vec<R
     let row = |key: &str, o: Option<&KeyValue>, n: Option<&KeyValue>, change| Row {
         scene: scene.to_string(),
         key: key.to_string(),
+        name: crate::results::names::name(scene, key),
         old: o.map(ToString::to_string),
         new: n.map(ToString::to_string),
         change,
@@ -390,7 +393,12 @@ pub fn to_text(d: &Diff) -> String {
             }
             s.push_str(&format!("{title} ({}):\n", rows.len()));
             for r in rows {
-                s.push_str(&format!("  {} / {}: {}\n", r.scene, r.key, detail(r)));
+                // the name to read, and the key to type when it differs
+                let key = match r.name == r.key {
+                    true => String::new(),
+                    false => format!(" (key \"{}\")", r.key),
+                };
+                s.push_str(&format!("  {} / {}{key}: {}\n", r.scene, r.name, detail(r)));
             }
         };
     let arrow = |r: &Row| {
@@ -477,7 +485,7 @@ pub fn to_text(d: &Diff) -> String {
     s
 }
 
-/// The comparison as JSON: every row (scene, key, old, new, change, moved, allowed), the
+/// The comparison as JSON: every row (scene, key, name, old, new, change, moved, allowed), the
 /// scenes on one side only, and the verdict `beyond_uncertainty`.
 pub fn to_json(d: &Diff) -> serde_json::Value {
     serde_json::json!({

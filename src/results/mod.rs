@@ -9,6 +9,7 @@ pub mod diff;
 pub mod files;
 #[cfg(feature = "plots")]
 pub mod marker;
+pub mod names;
 #[cfg(feature = "plots")]
 pub mod narrow;
 pub(crate) mod output_lock;

@@ -425,6 +425,8 @@ pub const SCHEMA_VERSION: u32 = 1;
 /// parameters, the provenance, the verdict and every number with its uncertainty (the
 /// shape of `key_numbers.json` and of `cantilever scene NAME --json`).
 pub fn key_numbers_document(spec: &dyn Entry, out: &SceneOutput) -> serde_json::Value {
+    let mut numbers = out.key_numbers.to_json();
+    crate::results::names::annotate(spec.name(), &mut numbers);
     serde_json::json!({
         "schema_version": SCHEMA_VERSION,
         "scene": spec.name(),
@@ -434,7 +436,7 @@ pub fn key_numbers_document(spec: &dyn Entry, out: &SceneOutput) -> serde_json::
         "parameters": out.params,
         "provenance": out.provenance,
         "verdict": out.verdict,
-        "key_numbers": out.key_numbers.to_json(),
+        "key_numbers": numbers,
     })
 }
 

@@ -123,9 +123,15 @@ fn table_row(r: &Row) -> Vec<String> {
         Change::KindChanged => "kind changed".into(),
         _ => "—".into(),
     };
+    // the name to read, the key to type
     let key = match unit(&r.new_value).or(unit(&r.old_value)) {
-        Some(u) => format!("`{}`<br><small>in {}</small>", r.key, for_html(u)),
-        None => format!("`{}`", r.key),
+        Some(u) => format!(
+            "{}<br><small>`{}`, in {}</small>",
+            for_html(&r.name),
+            r.key,
+            for_html(u)
+        ),
+        None => format!("{}<br><small>`{}`</small>", for_html(&r.name), r.key),
     };
     vec![
         key,
@@ -211,7 +217,7 @@ fn markdown(d: &Diff, what: &str, expected: bool, seconds: f64) -> String {
         .rows
         .iter()
         .filter(|r| r.change == Change::Unchanged)
-        .map(|r| format!("`{}` = {}", r.key, shown(&r.new_value)))
+        .map(|r| format!("{} = {}", for_html(&r.name), shown(&r.new_value)))
         .collect();
     if !same.is_empty() {
         s += &format!(
