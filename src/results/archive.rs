@@ -84,9 +84,15 @@ pub fn write(repo: &Path, book_dir: &Path, out: &Path) -> Result<Archive, Archiv
     std::fs::create_dir(&staging).map_err(|e| {
         ArchiveError::Refused(format!("--out: cannot create {}: {e}", staging.display()))
     })?;
+    // an interrupted archive (Ctrl-C, SIGTERM) leaves nothing: the signal's clean-up
+    // removes the staging folder
+    crate::results::files::register(&staging);
     let result = fill(&staging, repo, book_dir, &build).and_then(|files| {
+        // renamed and unregistered together: a signal sees the folder staged or in place
+        let _writing = crate::results::files::writing();
         std::fs::rename(&staging, out)
             .map_err(|e| failed(&format!("renaming into {}", out.display()), e))?;
+        crate::results::files::unregister(&staging);
         Ok(files)
     });
     match result {
@@ -98,6 +104,7 @@ pub fn write(repo: &Path, book_dir: &Path, out: &Path) -> Result<Archive, Archiv
         Err(e) => {
             // the staging folder is ours: created above, under a name with our process id
             let _ = std::fs::remove_dir_all(&staging);
+            crate::results::files::unregister(&staging);
             Err(e)
         }
     }

@@ -289,6 +289,7 @@ pub fn build_only(
             &root.join("assets/math/font"),
             &fresh.join("assets/math/font"),
         )?;
+        copy_sources(&root.join("src"), &fresh.join(SOURCES))?;
         build_dir::write_manifest(&fresh)
     });
     if let Err(e) = built {
@@ -479,6 +480,31 @@ pub fn citation(provenance: &Provenance) -> String {
         ),
         c::PAPER_BIBTEX
     )
+}
+
+/// The folder of the built book that holds each chapter's source, linked from its footer.
+pub const SOURCES: &str = "source";
+
+/// Each chapter's Markdown source (`src/NAME.md`, with its number placeholders) as
+/// `NAME.txt`, which every browser shows as text (not `NAME.md.txt`: mdBook would rewrite
+/// a link to it as one to `NAME.html`): the "view the source of this page" link (there is
+/// no public repository to link to yet).
+fn copy_sources(src: &Path, to: &Path) -> Result<()> {
+    std::fs::create_dir_all(to).with_context(|| format!("creating {}", to.display()))?;
+    for entry in std::fs::read_dir(src).with_context(|| format!("reading {}", src.display()))? {
+        let path = entry?.path();
+        let name = path
+            .file_name()
+            .unwrap_or_default()
+            .to_string_lossy()
+            .into_owned();
+        if path.is_file() && name.ends_with(".md") && name != "SUMMARY.md" {
+            let text = format!("{}.txt", name.trim_end_matches(".md"));
+            std::fs::copy(&path, to.join(text))
+                .with_context(|| format!("copying {}", path.display()))?;
+        }
+    }
+    Ok(())
 }
 
 fn copy_dir(from: &Path, to: &Path) -> Result<()> {

@@ -171,6 +171,12 @@ impl NumbersPreprocessor {
                  `cantilever cite {scene}`."
             ));
         }
+        // the page's own source, numbers as placeholders (see `copy_sources`)
+        s.push_str(&format!(
+            " The source of this page: [`book/src/{chapter}`]({}/{}.txt).",
+            super::SOURCES,
+            chapter.trim_end_matches(".md")
+        ));
         s.push_str("\n\n</div>\n");
         s
     }
