@@ -16,7 +16,12 @@ use plotters::prelude::*;
 pub fn plot(d: &BoundariesData, layout: Layout) -> Result<String, RenderError> {
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, layout.grid_size(1, 1, 560)).into_drawing_area();
+        // on a phone the key needs its own room above the curves: a taller panel
+        let size = match layout {
+            Layout::Wide => layout.grid_size(1, 1, 560),
+            Layout::Narrow => (layout.width(), 480),
+        };
+        let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
         let (k0, k1) = d.params.k_range;
         // the ω the curves span, with a margin (the traced rectangle is wider)
@@ -29,6 +34,10 @@ pub fn plot(d: &BoundariesData, layout: Layout) -> Result<String, RenderError> {
             (lo - 0.05 * (hi - lo), hi + 0.05 * (hi - lo))
         } else {
             d.params.omega_range
+        };
+        let w1 = match layout {
+            Layout::Wide => w1,
+            Layout::Narrow => w1 + 0.7 * (w1 - w0),
         };
         let mut chart = ChartBuilder::on(&root)
             .caption(

@@ -18,6 +18,7 @@ const ENTRY: RGBColor = RGBColor(0, 158, 115);
 fn velocity_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
     d: &Fig9Data,
+    layout: Layout,
 ) -> Result<(), RenderError> {
     let span = d.samples.last().map_or(1.0, |s| s.0.max(1.0));
     let (lo, hi) = d
@@ -25,13 +26,18 @@ fn velocity_panel<DB: DrawingBackend>(
         .iter()
         .fold((0.0_f64, 0.0_f64), |(a, b), s| (a.min(s.1), b.max(s.1)));
     let pad = 0.08 * (hi - lo).max(1e-9);
+    // on a phone the key is as wide as half the panel: room for it below the curve
+    let below = match layout {
+        Layout::Wide => pad,
+        Layout::Narrow => pad + 0.65 * (hi - lo),
+    };
     let mut chart = ChartBuilder::on(area)
         .caption(format!("(a) tip velocity over one period: {}", d.count.kind), CAPTION_FONT)
         .margin(8)
         .margin_right(28)
         .x_label_area_size(44)
         .y_label_area_size(64)
-        .build_cartesian_2d(0.0..span, (lo - pad)..(hi + pad))
+        .build_cartesian_2d(0.0..span, (lo - below)..(hi + pad))
         .map_err(drawing)?;
     styled_mesh(&mut chart)
         .x_desc("t / T")
@@ -227,7 +233,7 @@ pub fn plot(d: &Fig9Data, layout: Layout) -> Result<String, RenderError> {
         root.fill(&WHITE).map_err(drawing)?;
         let (a, rest) = root.split_vertically(top);
         let (b, scans) = rest.split_vertically(top);
-        velocity_panel(&a, d)?;
+        velocity_panel(&a, d, layout)?;
         spectrum_panel(&b, d, layout)?;
         let (title, cells) = scans.split_vertically(title_height);
         for (i, line) in lines.iter().enumerate() {

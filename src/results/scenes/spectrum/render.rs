@@ -83,7 +83,11 @@ pub fn plot(d: &SpectrumData, layout: Layout) -> Result<String, RenderError> {
                 .draw_series(DashedLineSeries::new(small, 5, 4, c.stroke_width(1)))
                 .map_err(drawing)?;
             if i == 0 {
-                law.label("small-k law, eq (4), same colour")
+                // short on a phone: the key then fits below mode 1's plateau
+                law.label(match layout {
+                    Layout::Wide => "small-k law, eq (4), same colour",
+                    Layout::Narrow => "small-k law (4)",
+                })
                     .legend(dashed_key(BLACK.stroke_width(1)));
             }
             let pinned = chart
@@ -96,7 +100,10 @@ pub fn plot(d: &SpectrumData, layout: Layout) -> Result<String, RenderError> {
                 .map_err(drawing)?;
             if i == 0 {
                 pinned
-                    .label("clamped-pinned (k = ∞)")
+                    .label(match layout {
+                        Layout::Wide => "clamped-pinned (k = ∞)",
+                        Layout::Narrow => "pinned, k = ∞",
+                    })
                     .legend(|(x, y)| {
                         DashedPathElement::new(
                             vec![(x, y), (x + 24, y)],
