@@ -55,6 +55,9 @@ fn multiplier_key(k: &mut KeyNumbers, name: String, value: f64) {
     );
 }
 
+/// Which tools a key looks at.
+type Which<'a> = &'a dyn Fn(&str) -> bool;
+
 /// A series' tool as the key numbers name it ("this project's" for its own Dormand–Prince).
 fn tool_name(tool: &str) -> &str {
     if tool == OWN {
@@ -93,7 +96,7 @@ pub(super) fn key_numbers(d: &SideBySideData) -> KeyNumbers {
             worst_recomputed = worst_recomputed.max(r);
         }
         for (target, label) in [(1e-6, "1e-6"), (1e-9, "1e-9")] {
-            let kinds: [(&str, &dyn Fn(&str) -> bool); 4] = [
+            let kinds: [(&str, Which); 4] = [
                 ("fastest peer", &|t: &str| t != OWN),
                 ("fastest CVODE run", &|t: &str| t == "CVODE"),
                 ("fastest scipy run", &|t: &str| t == "scipy"),
