@@ -18,7 +18,7 @@ from datetime import datetime, timezone
 PEERS = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(PEERS)
 RESULTS = os.path.join(PEERS, "results")
-FORMAT = "impacting-cantilever peer results v1"
+FORMAT = "impacting-cantilever peer results v2"
 
 
 def target_dir():
@@ -29,17 +29,39 @@ def cantilever_path():
     return os.path.join(target_dir(), "release", "cantilever")
 
 
+def example_path():
+    return os.path.join(target_dir(), "release", "examples", "peer_problem")
+
+
+def cvode_path():
+    return os.path.join(target_dir(), "peers", "cvode_peer")
+
+
+def cvode_flags():
+    """The C compiler's flags for SUNDIALS: $CVODE_CFLAGS and $CVODE_LIBS, by default those
+    of Debian's libsundials-dev (headers in /usr/include, the libraries' .so links)."""
+    cflags = os.environ.get("CVODE_CFLAGS", "").split()
+    libs = os.environ.get("CVODE_LIBS", "-lsundials_cvode -lsundials_nvecserial").split()
+    return cflags, libs
+
+
 def build(cargo_args):
-    """Builds the command line and the matrices example (release profile)."""
+    """Builds the command line and the matrices example (release profile), and the CVODE
+    peer (cc -O2)."""
     cmd = ["cargo", "build", "--release", "--bin", "cantilever", "--example", "peer_problem"]
     subprocess.run(cmd + list(cargo_args), cwd=ROOT, check=True)
+    cflags, libs = cvode_flags()
+    os.makedirs(os.path.dirname(cvode_path()), exist_ok=True)
+    subprocess.run(["cc", "-O2", "-o", cvode_path(), *cflags, os.path.join(PEERS, "cvode_peer.c"),
+                    *libs, "-lm"], check=True)
 
 
 def problem_flags(p):
     """The `cantilever simulate` flags of a problem dict (see run.py's PROBLEMS)."""
-    flags = [
-        "--modes", str(p["modes"]),
-        "--stop-stiffness", repr(float(p.get("stop_stiffness_over_k1", 100.0))),
+    flags = ["--modes", str(p["modes"])]
+    if p["model"] != "rigid":  # a rigid stop has no stiffness (the command line refuses one)
+        flags += ["--stop-stiffness", repr(float(p.get("stop_stiffness_over_k1", 100.0)))]
+    flags += [
         "--zeta1", repr(float(p["zeta1"])),
         "--omega", repr(float(p["omega_over_beta1_squared"])),
         "--gap", repr(float(p["gap"])),
@@ -51,7 +73,7 @@ def problem_flags(p):
 
 def matrices(p):
     """The model matrices of problem p, from the library (examples/peer_problem.rs)."""
-    exe = os.path.join(target_dir(), "release", "examples", "peer_problem")
+    exe = example_path()
     flags = problem_flags({**p, "model": "compliant"})
     flags += ["--restitution", repr(float(p.get("restitution", 0.8)))]
     out = subprocess.run([exe] + flags, check=True, capture_output=True, text=True).stdout
@@ -86,6 +108,24 @@ def cpu_timed(fn):
 
 def median(xs):
     return statistics.median(xs)
+
+
+def one_thread_env():
+    """The environment of a timed child process: one thread (rayon and BLAS)."""
+    env = dict(os.environ)
+    for var in ("RAYON_NUM_THREADS", "OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+        env[var] = "1"
+    return env
+
+
+def run_json(args):
+    """Runs a program that prints one JSON object on its last line of output."""
+    out = subprocess.run(args, capture_output=True, text=True, env=one_thread_env())
+    last = out.stdout.strip().splitlines()[-1] if out.stdout.strip() else ""
+    try:
+        return json.loads(last)
+    except json.JSONDecodeError:
+        raise RuntimeError(f"{' '.join(args)}: exit {out.returncode}: {out.stderr[-500:]}")
 
 
 def rel_max_error(x, ref):
@@ -123,7 +163,9 @@ def versions(extra=None):
     import numpy
     import scipy
     commit = _cmd(["git", "rev-parse", "HEAD"])
-    dirty = bool(_cmd(["git", "status", "--porcelain", "--untracked-files=no"]))
+    # the result files this run rewrites do not make the build dirty
+    dirty = bool(_cmd(["git", "status", "--porcelain", "--untracked-files=no", "--", ".",
+                       ":(exclude)peers/results"]))
     v = {
         "python": platform.python_version(),
         "numpy": numpy.__version__,
@@ -131,6 +173,9 @@ def versions(extra=None):
         "mpmath": mpmath.__version__,
         "rustc": _cmd(["rustc", "--version"]),
         "cantilever": _cmd([cantilever_path(), "--version"]),
+        "cc": next(iter((_cmd(["cc", "--version"]) or "").splitlines()), None),
+        "sundials": ("libsundials-cvode6 " + v + " (Debian)") if (v := _cmd(
+            ["dpkg-query", "-W", "-f", "${Version}", "libsundials-cvode6"])) else None,
         "commit": commit + (" (uncommitted changes)" if dirty else ""),
     }
     v.update(extra or {})

@@ -4,13 +4,16 @@
     python3 peers/run.py                       # everything (about an hour on two cores)
     python3 peers/run.py --only oscillator     # one problem (or: chatter, rigid-n2,
                                                # fig4-n3, fig4-n10, orbits)
-    python3 peers/run.py --repeats 5 --budget 20 --siconos-python /usr/bin/python3
+    python3 peers/run.py --repeats 3 --inner 10 --budget 10 --siconos-python /usr/bin/python3
 
-Timing: every run of a problem (this project's command line and each peer at each setting)
-is repeated --repeats times, alternated (repeat 1 of every run, then repeat 2, ...), and the
-median CPU time is kept. A rung of a tolerance ladder whose first run takes longer than
---budget seconds is the last of its ladder: the tighter rungs are recorded as not run, with
-the time extrapolated from the last two rungs.
+Timing (every tool alike): the CPU time of the solve alone, set-up apart, one thread, the
+best of the repeats. Every run of a problem (this project and each peer at each setting) is
+repeated --repeats times, alternated (repeat 1 of every run, then repeat 2, ...); the
+compiled tools (this project, its Dormand–Prince, CVODE) also repeat their solve up to
+--inner times inside each of those (until 1 s of CPU), their runs being micro- to
+milliseconds. The best (smallest) CPU time is kept. A rung of a tolerance ladder whose
+first run takes longer than --budget seconds is the last of its ladder: the tighter rungs
+are recorded as not run, with the time extrapolated from the last two rungs.
 """
 
 import argparse
@@ -32,6 +35,7 @@ import common  # noqa: E402
 import orbits  # noqa: E402
 import reference  # noqa: E402
 import scipy_peers  # noqa: E402
+from includes import INCLUDES, ORBIT_INCLUDES  # noqa: E402
 from model import Model  # noqa: E402
 
 FIG4 = {"model": "compliant", "stop_stiffness_over_k1": 100.0, "zeta1": 0.01,
@@ -67,7 +71,9 @@ PROBLEMS = {
 RTOLS = [10.0 ** -e for e in range(3, 14)]
 MJ_STEPS = [25, 100, 400, 1600, 6400, 25600]
 SCIPY_METHODS = ["DOP853", "Radau", "LSODA"]
-
+CVODE_METHODS = [("bdf", "BDF, Newton with the exact Jacobian (dense)"),
+                 ("adams", "Adams, fixed-point iteration")]
+DOPRI5 = "Dormand–Prince 5(4) with event location (the work-precision chapter's)"
 
 # ------------------------------------------------------------------ helpers
 
@@ -131,12 +137,17 @@ def ours_values(p, tmp):
     }
 
 
-def ours_timed(p, tmp):
-    args = ["simulate"] + cli_flags(p) + initial_state_file(p, tmp) + [
-        "--periods", str(p["periods"]), "--record", "0"]
-    report, final, cpu = common.run_cantilever(args, final_state=True)
-    return {"run_seconds": report["wall_seconds"], "process_cpu_seconds": cpu,
-            "final_state": floats(final)}
+def example_args(mode, p, tmp, inner):
+    return [common.example_path(), mode] + cli_flags(p) + initial_state_file(p, tmp) + [
+        "--periods", str(p["periods"]), "--repeats", str(inner)]
+
+
+def ours_timed(p, tmp, inner):
+    """This project's run timed by the library (examples/peer_problem.rs `time`): the best
+    of up to `inner` solves in one process."""
+    r = common.run_json(example_args("time", p, tmp, inner))
+    return {"cpu_seconds": min(r["cpu_seconds"]), "solves": len(r["cpu_seconds"]),
+            "setup_cpu_seconds": r["setup_cpu_seconds"], "final_state": floats(r["state"])}
 
 
 # ------------------------------------------------------------------ the peers
@@ -169,6 +180,36 @@ def scipy_run(p, model, method, rtol):
     return {"cpu_seconds": cpu, "strobe": r["strobe"], "final_state": r["state"],
             "event_times": [e[0] for e in r["events"]], "event_kinds": kinds,
             "outcome": r["outcome"], "rhs_evaluations": r["nfev"]}
+
+
+def problem_text(p, mx, path):
+    """The problem for cvode_peer.c: whitespace-separated numbers (see its header)."""
+    flat = lambda m: [v for row in m for v in row]
+    nums = [1 if p["model"] == "rigid" else 0, mx["modes"], p["periods"], mx["period"], mx["omega"],
+            mx["gap"]] + flat(mx["K_minus"]) + flat(mx["K_plus"]) + mx["damping"] + \
+        mx["forcing_amplitude"] + mx["tip"] + mx["contact_preload"] + \
+        flat(mx["law_impulse_response"]) + p["initial_state"]
+    with open(path, "w") as f:
+        f.write("\n".join(repr(float(v)) for v in nums) + "\n")
+    return path
+
+
+def compiled_row(r):
+    """A compiled tool's run (CVODE, this project's Dormand–Prince): the best of its solves
+    in one process is this repeat's time."""
+    return {"cpu_seconds": min(r["cpu_seconds"]), "solves": len(r["cpu_seconds"]),
+            "setup_cpu_seconds": r["setup_cpu_seconds"], "strobe": r["strobe"],
+            "final_state": r["state"], "event_times": [float(e[0]) for e in r["events"]],
+            "event_kinds": [bool(e[1]) for e in r["events"]], "outcome": r["outcome"],
+            "rhs_evaluations": r["rhs_evaluations"]}
+
+
+def cvode_run(problem_file, method, rtol, inner):
+    return compiled_row(common.run_json([common.cvode_path(), problem_file, method, repr(rtol), str(inner)]))
+
+
+def dopri5_run(p, tmp, rtol, inner):
+    return compiled_row(common.run_json(example_args("dopri5", p, tmp, inner) + ["--rtol", repr(rtol)]))
 
 
 def siconos_run(p, matrices_file, method, setting, python):
@@ -223,6 +264,7 @@ def run_problem(name, args):
         model = Model(mx)
         matrices_file = os.path.join(tmp, "matrices.json")
         json.dump(mx, open(matrices_file, "w"))
+        problem_file = problem_text(p, mx, os.path.join(tmp, "problem.txt"))
         # the independent reference
         common.log("  reference (mpmath)")
         if p["modes"] == 1:
@@ -251,6 +293,12 @@ def run_problem(name, args):
         ours = ours_values(p, tmp)
         # each peer's ladder
         peers = []
+        if p["model"] == "compliant":
+            peers.append(("cantilever", DOPRI5, "rtol", RTOLS,
+                          lambda rtol: dopri5_run(p, tmp, rtol, args.inner)))
+        for method, label in CVODE_METHODS:
+            peers.append(("CVODE", label, "rtol", RTOLS,
+                          lambda rtol, m=method: cvode_run(problem_file, m, rtol, args.inner)))
         for method in SCIPY_METHODS + (["DOP853/100"] if p["model"] == "rigid" else []):
             label = method.replace("/100", ", largest step T/100")
             peers.append(("scipy", label, "rtol", RTOLS,
@@ -264,7 +312,7 @@ def run_problem(name, args):
                           lambda steps: siconos_run(p, matrices_file, "mj", steps, args.siconos_python)))
         # repeat 1 (decides which rungs run), then the others, alternated
         common.log("  repeat 1")
-        ours_samples = [ours_timed(p, tmp)]
+        ours_samples = [ours_timed(p, tmp, args.inner)]
         tables = []
         for tool, method, setting_name, rungs, fn in peers:
             def one(rung, fn=fn, tool=tool, method=method):
@@ -274,7 +322,7 @@ def run_problem(name, args):
             tables.append((tool, method, setting_name, ladder(rungs, args.budget, one)))
         for rep in range(1, args.repeats):
             common.log(f"  repeat {rep + 1}")
-            ours_samples.append(ours_timed(p, tmp))
+            ours_samples.append(ours_timed(p, tmp, args.inner))
             for (tool, method, setting_name, table), peer in zip(tables, peers):
                 for rung, results in table:
                     if results is not None:
@@ -301,12 +349,12 @@ def run_problem(name, args):
                     continue
                 first = results[0]
                 samples = [r["cpu_seconds"] for r in results]
-                t_med = common.median(samples)
-                last_two = (last_two + [(rung, t_med)])[-2:]
+                t_best = min(samples)
+                last_two = (last_two + [(rung, t_best)])[-2:]
                 row.update({
                     "outcome": first["outcome"],
                     "cpu_seconds": samples,
-                    "cpu_seconds_median": t_med,
+                    "cpu_seconds_best": t_best,
                     "final_state": first["final_state"],
                     "strobe": first["strobe"],
                     "events": len(first["event_times"]),
@@ -323,20 +371,26 @@ def run_problem(name, args):
                 })
                 if "rhs_evaluations" in first:
                     row["rhs_evaluations"] = first["rhs_evaluations"]
+                if "solves" in first:
+                    row["solves_per_repeat"] = [r["solves"] for r in results]
+                    row["setup_cpu_seconds"] = first["setup_cpu_seconds"]
                 rows.append(row)
         if p["model"] == "compliant":
             rows.append({"tool": "siconos", "method": "event-driven (LSODAR)", "setting_name": "rtol",
                          "setting": None, "outcome": "not applicable: the compliant stop is a smooth "
                          "piecewise-linear spring, not a nonsmooth law; Siconos would integrate it as a "
                          "plain ODE (LSODAR without a root function, the LSODA rows)"})
+        # the timed run is the command line's run
+        if common.rel_max_error(ours_samples[0]["final_state"], ours["final_state"]) > 1e-13:
+            raise RuntimeError(f"{name}: the timed run does not end where the command line's does")
         ours_doc = dict(ours)
         ours_doc.update({
-            "run_seconds": [s["run_seconds"] for s in ours_samples],
-            "run_seconds_median": common.median([s["run_seconds"] for s in ours_samples]),
-            "process_cpu_seconds": [s["process_cpu_seconds"] for s in ours_samples],
-            "process_cpu_seconds_median": common.median([s["process_cpu_seconds"] for s in ours_samples]),
-            "timed_command": "cantilever " + " ".join(["simulate"] + cli_flags(p) + [
-                "--periods", str(p["periods"]), "--record", "0"]),
+            "cpu_seconds": [s["cpu_seconds"] for s in ours_samples],
+            "cpu_seconds_best": min(s["cpu_seconds"] for s in ours_samples),
+            "solves_per_repeat": [s["solves"] for s in ours_samples],
+            "setup_cpu_seconds": ours_samples[0]["setup_cpu_seconds"],
+            "timed_command": "examples/peer_problem.rs " + " ".join(["time"] + cli_flags(p) + [
+                "--periods", str(p["periods"]), "--repeats", str(args.inner)]),
             "timed_final_state": ours_samples[0]["final_state"],
             "strobe_error_vs_reference": strobe_error(ours["strobe"], ref_strobe),
             "event_time_error_vs_reference": event_error(ours["event_times"], ours["event_kinds"],
@@ -344,7 +398,8 @@ def run_problem(name, args):
         })
         doc = common.header(spec, mx, siconos_version(args.siconos_python) if p["model"] == "rigid" else None,
                             load_at_start=load)
-        doc["protocol"] = protocol(args)
+        doc["protocol"] = protocol(args, INCLUDES if p["model"] == "compliant" else
+                                   [i for i in INCLUDES if "Dormand" not in i[0]])
         doc["reference"] = {
             "method": p["reference"],
             "digits": reference.DPS,
@@ -363,15 +418,17 @@ def run_problem(name, args):
         common.log(f"  wrote {path}")
 
 
-def protocol(args):
+def protocol(args, includes):
     return {
         "repeats": args.repeats,
+        "inner_repeats": args.inner,
         "budget_seconds": args.budget,
-        "timing": "CPU time (time.process_time) of each peer's integration, model set-up and "
-                  "interpreter start excluded; the median of `repeats` runs, alternated. This "
-                  "project: the command line's own wall time of the run (`wall_seconds`, set-up "
-                  "of the flows included, process start excluded) and the process's CPU time "
-                  "(start-up, set-up and output included).",
+        "timing": "Every tool alike: the CPU time of the solve alone (set-up apart), one "
+                  "thread, the best of `repeats` runs alternated between the tools; the "
+                  "compiled tools (this project, its Dormand–Prince, CVODE) repeat their solve "
+                  "up to `inner_repeats` times inside each run (until 1 s of CPU) and report "
+                  "the best. Measured from a committed build (versions.commit).",
+        "includes": includes,
         "error": "strobe error: max over the period ends kT of ‖x(kT) − x_ref(kT)‖∞ over max "
                  "over k of ‖x_ref(kT)‖∞; event-time error: max |t − t_ref| over the events when "
                  "the two sequences have the same number and kind of events.",
@@ -408,14 +465,18 @@ def run_orbits(args):
                     "command": "cantilever " + " ".join(orbit_args).replace(start_file, "START.json")}
             # an independent check of our orbit: the mpmath period map at our fixed point
             ours, _, _ = common.run_cantilever(orbit_args)
+            timed_args = [common.example_path(), "orbit"] + flags + [
+                "--initial-state", start_file, "--repeats", str(args.inner)]
             pw = reference.Piecewise(model)
             px = pw.run(ours["state"], 1)["state"]
             case["reference_residual_of_ours"] = common.rel_max_error(floats(px), ours["state"])
             case["ours"] = {"state": ours["state"], "multipliers": ours["multipliers"],
                             "iterations": ours["iterations"], "residual": ours["residual"],
-                            "impacts_n": ours["impacts_n"], "run_seconds": [], "process_cpu_seconds": []}
+                            "impacts_n": ours["impacts_n"], "cpu_seconds": [], "solves_per_repeat": [],
+                            "timed_command": "examples/peer_problem.rs " + " ".join(
+                                timed_args[1:]).replace(start_file, "START.json")}
             problems.append(case)
-            runs.append(("ours", case, None, None, lambda a=orbit_args: common.run_cantilever(a)))
+            runs.append(("ours", case, None, None, lambda a=timed_args: common.run_json(a)))
             for method, rtols in ORBIT_RTOLS.items():
                 for rtol in rtols:
                     runs.append(("scipy", case, method, rtol,
@@ -429,9 +490,11 @@ def run_orbits(args):
                 if i in skipped:
                     continue
                 if kind == "ours":
-                    report, _, cpu = fn()
-                    case["ours"]["run_seconds"].append(report["wall_seconds"])
-                    case["ours"]["process_cpu_seconds"].append(cpu)
+                    r = fn()
+                    if common.rel_max_error(r["state"], case["ours"]["state"]) > 1e-13:
+                        raise RuntimeError(f"orbit N={case['modes']}: the timed orbit is not the command line's")
+                    case["ours"]["cpu_seconds"].append(min(r["cpu_seconds"]))
+                    case["ours"]["solves_per_repeat"].append(len(r["cpu_seconds"]))
                     continue
                 # a tighter rung of a ladder whose looser rung went over budget is not run
                 prev = runs[i - 1]
@@ -446,8 +509,7 @@ def run_orbits(args):
         for i, (kind, case, method, rtol, _) in enumerate(runs):
             if kind == "ours":
                 o = case["ours"]
-                o["run_seconds_median"] = common.median(o["run_seconds"])
-                o["process_cpu_seconds_median"] = common.median(o["process_cpu_seconds"])
+                o["cpu_seconds_best"] = min(o["cpu_seconds"])
                 continue
             row = {"modes": case["modes"], "start_periods": case["start_periods"], "tool": "scipy",
                    "method": method + " + central-difference monodromy", "setting_name": "rtol",
@@ -461,7 +523,7 @@ def run_orbits(args):
             row.update({
                 "outcome": r["outcome"],
                 "cpu_seconds": samples,
-                "cpu_seconds_median": common.median(samples),
+                "cpu_seconds_best": min(samples),
                 "state": r["state"],
                 "multipliers": r["multipliers"],
                 "residual": r["residual"],
@@ -474,7 +536,7 @@ def run_orbits(args):
         doc = common.header({"title": "Figure 4 orbit and its Floquet multipliers by Newton shooting",
                              **FIG4, "cases": [{k: v for k, v in c.items() if k != "ours"} for c in problems]},
                             None, load_at_start=load)
-        doc["protocol"] = protocol(args)
+        doc["protocol"] = protocol(args, ORBIT_INCLUDES)
         doc["ours"] = [dict(c["ours"], modes=c["modes"], start_periods=c["start_periods"]) for c in problems]
         doc["rows"] = rows
         path = common.write_result("orbits", doc)
@@ -484,9 +546,12 @@ def run_orbits(args):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--only", action="append", choices=list(PROBLEMS) + ["orbits"])
-    ap.add_argument("--repeats", type=int, default=5)
-    ap.add_argument("--budget", type=float, default=20.0,
-                    help="CPU seconds of a run beyond which a ladder stops (default 20)")
+    ap.add_argument("--repeats", type=int, default=3,
+                    help="alternated timing runs per setting (default 3)")
+    ap.add_argument("--inner", type=int, default=10,
+                    help="solves of a compiled tool inside each timing run, up to 1 s of CPU (default 10)")
+    ap.add_argument("--budget", type=float, default=10.0,
+                    help="CPU seconds of a run beyond which a ladder stops (default 10)")
     ap.add_argument("--siconos-python", default="/usr/bin/python3")
     ap.add_argument("--no-build", action="store_true")
     ap.add_argument("--cargo-arg", action="append", default=[],

@@ -1,5 +1,6 @@
 //! The comparison with other tools: the results of the peer scripts of `peers/` (scipy,
-//! Siconos, mpmath references; written by `python3 peers/run.py` into `peers/results/`), read
+//! Siconos, SUNDIALS CVODE, mpmath references; written by `python3 peers/run.py` into
+//! `peers/results/`), read
 //! and checked here, and this project's values for the same problems recomputed by the library
 //! so that a committed file can be told from a stale one.
 //!
@@ -21,8 +22,12 @@ use serde::Deserialize;
 use serde_json::{json, Value};
 use std::collections::BTreeMap;
 
-/// The format named in every file.
-pub const FORMAT: &str = "impacting-cantilever peer results v1";
+/// The format named in every file (v2: every time the best CPU time of the solve alone;
+/// CVODE and this project's Dormand–Prince among the rows).
+pub const FORMAT: &str = "impacting-cantilever peer results v2";
+
+/// The `tool` of this project's own Dormand–Prince rows: not a peer.
+pub const OWN: &str = "cantilever";
 
 /// The committed files: the simulation problems in the book's order, then the orbits.
 pub const FILES: [(&str, &str); 6] = [
@@ -114,12 +119,17 @@ pub struct Machine {
 /// How the runs were timed and compared.
 #[derive(Debug, Clone, Deserialize)]
 pub struct Protocol {
-    /// Runs per setting (the median is kept).
+    /// Runs per setting, alternated between the tools (the best is kept).
     pub repeats: usize,
+    /// Solves of a compiled tool (this project, its Dormand–Prince, CVODE) inside each run,
+    /// at most (until 1 s of CPU; the best is that run's time).
+    pub inner_repeats: usize,
     /// CPU seconds of a run beyond which a tolerance ladder stops.
     pub budget_seconds: f64,
     /// What is timed.
     pub timing: String,
+    /// What each tool's time includes: (tool, one sentence).
+    pub includes: Vec<(String, String)>,
     /// What the errors measure.
     pub error: String,
 }
@@ -188,16 +198,18 @@ pub struct Ours {
     pub event_times: Vec<f64>,
     /// Event kinds.
     pub event_kinds: Vec<bool>,
-    /// Wall time of the run as the command line measured it, each repeat (s).
-    pub run_seconds: Vec<f64>,
-    /// Their median.
-    pub run_seconds_median: f64,
-    /// CPU time of the whole process, each repeat (s).
-    pub process_cpu_seconds: Vec<f64>,
-    /// Their median.
-    pub process_cpu_seconds_median: f64,
-    /// The command timed.
+    /// CPU time of the library's run (set-up apart), each repeat: the best of its solves (s).
+    pub cpu_seconds: Vec<f64>,
+    /// The best of them.
+    pub cpu_seconds_best: f64,
+    /// Solves in each repeat.
+    pub solves_per_repeat: Vec<usize>,
+    /// CPU time of building the model and its flows, not counted in the run's (s).
+    pub setup_cpu_seconds: f64,
+    /// The command timed (`examples/peer_problem.rs`).
     pub timed_command: String,
+    /// The timed run's final state (the command line's, checked when written).
+    pub timed_final_state: Vec<f64>,
     /// Strobe error against the reference.
     pub strobe_error_vs_reference: Option<f64>,
     /// Event-time error against the reference (None: the sequences differ in number).
@@ -207,7 +219,7 @@ pub struct Ours {
 /// One peer run (a rung of a ladder), or a recorded reason it was not run.
 #[derive(Debug, Clone, Deserialize)]
 pub struct Row {
-    /// scipy, siconos.
+    /// scipy, siconos, CVODE, or cantilever ([`OWN`]: this project's Dormand–Prince).
     pub tool: String,
     /// The integrator.
     pub method: String,
@@ -217,10 +229,14 @@ pub struct Row {
     pub setting: Option<f64>,
     /// How the run ended.
     pub outcome: String,
-    /// CPU seconds of each repeat.
+    /// CPU seconds of each repeat (a compiled tool: the best of its solves in it).
     pub cpu_seconds: Option<Vec<f64>>,
-    /// Their median.
-    pub cpu_seconds_median: Option<f64>,
+    /// The best of them.
+    pub cpu_seconds_best: Option<f64>,
+    /// A compiled tool: its solves in each repeat.
+    pub solves_per_repeat: Option<Vec<usize>>,
+    /// A compiled tool: the CPU time of its set-up, not counted in the run's (s).
+    pub setup_cpu_seconds: Option<f64>,
     /// A rung not run: its time extrapolated from the two before.
     pub extrapolated_cpu_seconds: Option<f64>,
     /// The state at the end of each period reached.
@@ -326,14 +342,13 @@ pub struct OurOrbit {
     pub multipliers: Vec<[f64; 2]>,
     /// Newton steps.
     pub iterations: usize,
-    /// Wall time of the command's run, each repeat (s).
-    pub run_seconds: Vec<f64>,
-    /// Their median.
-    pub run_seconds_median: f64,
-    /// CPU time of the whole process, each repeat (s).
-    pub process_cpu_seconds: Vec<f64>,
-    /// Their median.
-    pub process_cpu_seconds_median: f64,
+    /// CPU time of the library's shooting (set-up apart), each repeat: the best of its
+    /// solves (s).
+    pub cpu_seconds: Vec<f64>,
+    /// The best of them.
+    pub cpu_seconds_best: f64,
+    /// Solves in each repeat.
+    pub solves_per_repeat: Vec<usize>,
 }
 
 /// A peer's orbit.
@@ -353,8 +368,8 @@ pub struct OrbitRow {
     pub outcome: String,
     /// CPU seconds of each repeat.
     pub cpu_seconds: Option<Vec<f64>>,
-    /// Their median.
-    pub cpu_seconds_median: Option<f64>,
+    /// The best of them.
+    pub cpu_seconds_best: Option<f64>,
     /// The orbit's state.
     pub state: Option<Vec<f64>>,
     /// Its multipliers.
@@ -466,19 +481,9 @@ pub fn strobe_error(x: &[Vec<f64>], r: &[Vec<f64>]) -> Option<f64> {
     Some(worst / scale)
 }
 
-/// The median (the mean of the middle two for an even count), as Python's
-/// `statistics.median`.
-pub fn median(xs: &[f64]) -> f64 {
-    let mut v = xs.to_vec();
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    if n == 0 {
-        f64::NAN
-    } else if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        (v[n / 2 - 1] + v[n / 2]) / 2.0
-    }
+/// The smallest of some times (NaN for none): the best of the repeats.
+pub fn best(xs: &[f64]) -> f64 {
+    xs.iter().copied().reduce(f64::min).unwrap_or(f64::NAN)
 }
 
 /// The largest distance from a multiplier of `reference` to its match in `mu`, matched

@@ -1,22 +1,26 @@
 //! Scene `side-by-side`: error against run time for this project and the tools a researcher
-//! would use instead — scipy's `solve_ivp` with events (DOP853, Radau with the exact
-//! Jacobian, LSODA), Siconos 4.4's event-driven (LSODAR) and Moreau–Jean integrators, and
-//! Newton shooting with a finite-difference monodromy — on five shared problems and the
-//! Figure 4 orbit with its multipliers.
+//! would use instead — SUNDIALS CVODE with root finding (BDF and Adams, a compiled C
+//! right-hand side), scipy's `solve_ivp` with events (DOP853, Radau with the exact
+//! Jacobian, LSODA; a Python right-hand side), Siconos 4.4's event-driven (LSODAR) and
+//! Moreau–Jean integrators, and Newton shooting with a finite-difference monodromy — on
+//! five shared problems and the Figure 4 orbit with its multipliers; this project's own
+//! Dormand–Prince 5(4) with event location beside them on the compliant problems.
 //!
 //! The peers run outside this library (`peers/run.py`, Python); their committed results
 //! ([`crate::results::peers`]) are read here, checked (format, checksum) and drawn. Every
 //! error is measured against an independent 40-digit reference (mpmath), this project's
 //! included. The scene recomputes this project's values for the committed problems through
 //! the library and reports how far the committed ones lie from them, so a stale file shows.
-//! Timings are the committed ones (machine-dependent): they appear in the tables, never in
-//! the key numbers.
+//! Timings are the committed ones (machine-dependent), every tool's the best CPU time of its
+//! solve alone, set-up apart, one thread; their ratios are key numbers with the spread
+//! of the repeats as their uncertainty.
 
+mod keys;
 pub mod render;
 
-use crate::base::report::{KeyNumbers, Uncertainty};
+use crate::base::report::KeyNumbers;
 use crate::error::Error;
-use crate::results::peers::{self, Orbits, Simulation};
+use crate::results::peers::{self, Orbits, Simulation, OWN};
 use crate::results::scene::{Group, Outcome, Progress, Rendered, Resolution, Scene, Verdict};
 use serde::Serialize;
 
@@ -47,9 +51,9 @@ impl SideBySideParams {
 pub struct Point {
     /// The rtol or the steps per period.
     pub setting: Option<f64>,
-    /// Median CPU seconds (None: not run).
+    /// Best CPU seconds of the solve (None: not run).
     pub seconds: Option<f64>,
-    /// The middle half of its repeats (s).
+    /// The fastest and the slowest of its repeats (s).
     pub seconds_range: Option<(f64, f64)>,
     /// Strobe error against the reference (None: the run did not reach the end).
     pub error: Option<f64>,
@@ -64,7 +68,7 @@ pub struct Point {
 /// One peer integrator's ladder on one problem.
 #[derive(Debug, Clone, Serialize)]
 pub struct Series {
-    /// scipy or siconos.
+    /// CVODE, scipy, siconos, or [`OWN`] (this project's Dormand–Prince).
     pub tool: String,
     /// The integrator.
     pub method: String,
@@ -87,12 +91,12 @@ pub struct ProblemData {
     pub periods: u64,
     /// rigid or compliant.
     pub model: String,
-    /// This project's run time (the command line's own, median, s).
+    /// This project's best CPU time of the run (set-up apart, s).
     pub ours_seconds: f64,
-    /// The middle half of its repeats (s).
+    /// The fastest and the slowest of its repeats (s).
     pub ours_seconds_range: (f64, f64),
-    /// This project's process CPU time (start-up included, median, s).
-    pub ours_process_seconds: f64,
+    /// The CPU time of its set-up (the model and its flows), not counted (s).
+    pub ours_setup_seconds: f64,
     /// This project's strobe error against the reference.
     pub ours_error: f64,
     /// This project's events.
@@ -119,9 +123,9 @@ pub struct OrbitPoint {
     pub method: String,
     /// rtol.
     pub rtol: f64,
-    /// Median CPU seconds (None: not run).
+    /// Best CPU seconds (None: not run).
     pub seconds: Option<f64>,
-    /// The middle half of its repeats (s).
+    /// The fastest and the slowest of its repeats (s).
     pub seconds_range: Option<(f64, f64)>,
     /// Newton steps.
     pub newton_steps: Option<usize>,
@@ -142,12 +146,10 @@ pub struct OrbitData {
     pub modes: usize,
     /// Periods from rest before the start.
     pub start_periods: u64,
-    /// This project's run time (median, s).
+    /// This project's best CPU time of the shooting (set-up apart, s).
     pub ours_seconds: f64,
-    /// The middle half of its repeats (s).
+    /// The fastest and the slowest of its repeats (s).
     pub ours_seconds_range: (f64, f64),
-    /// Its process CPU time (median, s).
-    pub ours_process_seconds: f64,
     /// Its Newton steps.
     pub ours_iterations: usize,
     /// The spectral radius of its multipliers.
@@ -178,10 +180,15 @@ pub struct SideBySideData {
     pub dates: (String, String),
     /// The versions.
     pub versions: Vec<(String, String)>,
-    /// Runs per setting.
+    /// Runs per setting, alternated.
     pub repeats: usize,
+    /// Solves of a compiled tool inside each run, at most.
+    pub inner_repeats: usize,
     /// The ladder budget (s).
     pub budget_seconds: f64,
+    /// What each tool's time includes: (tool, one sentence), the orbits' after the
+    /// problems'.
+    pub includes: Vec<(String, String)>,
 }
 
 fn problem_data(name: &str, f: &Simulation, recompute: bool) -> Result<ProblemData, Error> {
@@ -189,7 +196,7 @@ fn problem_data(name: &str, f: &Simulation, recompute: bool) -> Result<ProblemDa
     for r in &f.rows {
         let point = Point {
             setting: r.setting,
-            seconds: r.cpu_seconds_median,
+            seconds: r.cpu_seconds_best,
             seconds_range: r.cpu_seconds.as_deref().map(range),
             error: r.strobe_error_vs_reference,
             clean: r.clean(),
@@ -221,9 +228,9 @@ fn problem_data(name: &str, f: &Simulation, recompute: bool) -> Result<ProblemDa
         modes: f.problem.modes,
         periods: f.problem.periods,
         model: f.problem.model.clone(),
-        ours_seconds: f.ours.run_seconds_median,
-        ours_seconds_range: range(&f.ours.run_seconds),
-        ours_process_seconds: f.ours.process_cpu_seconds_median,
+        ours_seconds: f.ours.cpu_seconds_best,
+        ours_seconds_range: range(&f.ours.cpu_seconds),
+        ours_setup_seconds: f.ours.setup_cpu_seconds,
         ours_error: f.ours.strobe_error_vs_reference.unwrap_or(f64::NAN),
         ours_events: f.ours.event_times.len(),
         reference_events: f.reference.events,
@@ -256,7 +263,7 @@ fn orbit_data(o: &Orbits, recompute: &[usize]) -> Result<Vec<OrbitData>, Error> 
             .map(|r| OrbitPoint {
                 method: r.method.clone(),
                 rtol: r.setting,
-                seconds: r.cpu_seconds_median,
+                seconds: r.cpu_seconds_best,
                 seconds_range: r.cpu_seconds.as_deref().map(range),
                 newton_steps: r.newton_steps,
                 periods: r.periods_integrated,
@@ -268,9 +275,8 @@ fn orbit_data(o: &Orbits, recompute: &[usize]) -> Result<Vec<OrbitData>, Error> 
         out.push(OrbitData {
             modes: case.modes,
             start_periods: case.start_periods,
-            ours_seconds: ours.run_seconds_median,
-            ours_seconds_range: range(&ours.run_seconds),
-            ours_process_seconds: ours.process_cpu_seconds_median,
+            ours_seconds: ours.cpu_seconds_best,
+            ours_seconds_range: range(&ours.cpu_seconds),
             ours_iterations: ours.iterations,
             ours_spectral_radius: ours.multipliers.first().map_or(0.0, |z| z[0].hypot(z[1])),
             reference_residual: case.reference_residual_of_ours,
@@ -312,6 +318,21 @@ pub fn compute(p: &SideBySideParams) -> Result<SideBySideData, Error> {
             }
         }
     }
+    // what each tool's time includes: the longest list of a problem's file (the compliant
+    // problems name every tool), then the orbits' tools under their own names
+    let mut includes = sims
+        .iter()
+        .map(|(_, f)| &f.protocol.includes)
+        .max_by_key(|l| l.len())
+        .cloned()
+        .unwrap_or_default();
+    includes.extend(
+        orbits
+            .protocol
+            .includes
+            .iter()
+            .map(|(tool, what)| (format!("{tool}, periodic orbit"), what.clone())),
+    );
     Ok(SideBySideData {
         params: p.clone(),
         orbits: orbit_data(&orbits, &p.recompute_orbits)?,
@@ -327,29 +348,39 @@ pub fn compute(p: &SideBySideParams) -> Result<SideBySideData, Error> {
         dates: (dates[0].clone(), dates[dates.len() - 1].clone()),
         versions,
         repeats: first.protocol.repeats,
+        inner_repeats: first.protocol.inner_repeats,
         budget_seconds: first.protocol.budget_seconds,
+        includes,
     })
 }
 
-/// The middle half of some repeats: the second and the second-to-last of them sorted (of
-/// five: the 2nd and the 4th). Sub-millisecond wall times on a busy machine are sometimes
-/// preempted; this leaves out one such outlier either way.
+/// The fastest and the slowest of some repeats (each already the best CPU time of its
+/// solves for a compiled tool).
 fn range(samples: &[f64]) -> (f64, f64) {
-    let mut v = samples.to_vec();
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    if n == 0 {
-        return (f64::NAN, f64::NAN);
+    let lo = samples.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = samples.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    if samples.is_empty() {
+        (f64::NAN, f64::NAN)
+    } else {
+        (lo, hi)
     }
-    let q = if n >= 4 { n / 4 } else { 0 };
-    (v[q], v[n - 1 - q])
 }
 
-/// The fastest clean run (every event found) of any peer with an error at or below
-/// `target`: its series and the run.
+/// The fastest clean run (every event found) of any peer — not this project's own
+/// Dormand–Prince — with an error at or below `target`: its series and the run.
 pub fn fastest(p: &ProblemData, target: f64) -> Option<(&Series, &Point)> {
+    fastest_of(p, target, |tool| tool != OWN)
+}
+
+/// [`fastest`] among the series whose tool `which` accepts (`"CVODE"`, `"scipy"`, [`OWN`]).
+pub fn fastest_of(
+    p: &ProblemData,
+    target: f64,
+    which: impl Fn(&str) -> bool,
+) -> Option<(&Series, &Point)> {
     p.series
         .iter()
+        .filter(|s| which(&s.tool))
         .flat_map(|s| {
             s.points
                 .iter()
@@ -357,30 +388,6 @@ pub fn fastest(p: &ProblemData, target: f64) -> Option<(&Series, &Point)> {
                 .map(move |q| (s, q))
         })
         .min_by(|a, b| a.1.seconds.unwrap_or(f64::INFINITY).total_cmp(&b.1.seconds.unwrap_or(f64::INFINITY)))
-}
-
-/// A peer's time over this project's, with the spread of the ratio over the middle half of
-/// the repeats of each.
-fn time_ratio(
-    k: &mut KeyNumbers,
-    name: String,
-    peer: (f64, (f64, f64)),
-    ours: (f64, (f64, f64)),
-) {
-    let ratio = peer.0 / ours.0;
-    let spread = ((peer.1 .1 / ours.1 .0) - ratio)
-        .abs()
-        .max((ratio - peer.1 .0 / ours.1 .1).abs());
-    k.cited(
-        name,
-        ratio,
-        2,
-        Uncertainty::new(
-            spread,
-            "medians of the committed timings (one machine); the ratio's spread over the middle half of the repeats",
-        ),
-        "",
-    );
 }
 
 /// Whether a run counts on its ladder: it found every event — or, in a problem with
@@ -399,29 +406,6 @@ pub fn best_error(s: &Series, sticking: bool) -> Option<f64> {
         .min_by(f64::total_cmp)
 }
 
-/// A computed error, exact given the committed data (2 figures).
-fn error_key(k: &mut KeyNumbers, name: String, value: f64) {
-    k.cited(
-        name,
-        value,
-        2,
-        Uncertainty::new(0.0, "computed from the committed peer results"),
-        "relative",
-    );
-}
-
-/// The distance of a Floquet multiplier from this project's (multipliers are pure
-/// numbers), exact given the committed data (2 figures).
-fn multiplier_key(k: &mut KeyNumbers, name: String, value: f64) {
-    k.cited(
-        name,
-        value,
-        2,
-        Uncertainty::new(0.0, "computed from the committed peer results"),
-        "",
-    );
-}
-
 /// The scene.
 pub struct SideBySide;
 
@@ -432,10 +416,10 @@ impl Scene for SideBySide {
     const GIST: &'static str = "— (the paper compares no tools)";
     const GROUP: Group = Group::Methods;
     const SUMMARY: &'static str =
-        "error against run time: this project beside scipy, Siconos and Newton shooting with finite differences";
+        "error against CPU time: this project beside CVODE, scipy, Siconos and Newton shooting with finite differences";
     const CLAIM: &'static str = "— (the paper compares no tools)";
     const CHAPTER: &'static str = "side-by-side.md";
-    const METHOD: &'static str = "the committed results of peers/run.py (scipy solve_ivp with events, Siconos 4.4 event-driven and Moreau–Jean, Newton shooting with a central-difference monodromy), each run's error against an independent 40-digit mpmath reference; this project's values recomputed by the library and compared with the committed ones";
+    const METHOD: &'static str = "the committed results of peers/run.py (SUNDIALS CVODE with root finding, scipy solve_ivp with events, Siconos 4.4 event-driven and Moreau–Jean, Newton shooting with a central-difference monodromy, this project's Dormand–Prince), each run's error against an independent 40-digit mpmath reference, every time the best CPU time of the solve alone; this project's values recomputed by the library and compared with the committed ones";
     const HEADLINE: &'static [(&'static str, &'static str)] = &[
         (
             "largest error of this project against the 40-digit references",
@@ -460,111 +444,7 @@ impl Scene for SideBySide {
     }
 
     fn key_numbers(d: &SideBySideData) -> KeyNumbers {
-        let mut k = KeyNumbers::default();
-        let mut worst_ours = 0.0_f64;
-        let mut worst_recomputed = 0.0_f64;
-        for p in &d.problems {
-            let n = &p.name;
-            k.integer(format!("{n} periods"), p.periods as i64);
-            k.integer(format!("{n} events"), p.ours_events as i64);
-            k.integer(format!("{n} reference events"), p.reference_events as i64);
-            error_key(&mut k, format!("{n} error of this project"), p.ours_error);
-            error_key(&mut k, format!("{n} conditioning"), p.sensitivity);
-            worst_ours = worst_ours.max(p.ours_error);
-            if let Some(t) = p.first_sticking {
-                k.cited(
-                    format!("{n} reference: first sticking begins at t"),
-                    t,
-                    6,
-                    Uncertainty::new(1e-12, "the 40-digit reference, chatter followed to 1e-12 in velocity"),
-                    "",
-                );
-            }
-            if let Some(r) = p.recomputed_difference {
-                worst_recomputed = worst_recomputed.max(r);
-            }
-            for (target, label) in [(1e-6, "1e-6"), (1e-9, "1e-9")] {
-                match fastest(p, target) {
-                    Some((s, q)) => {
-                        let run = format!("{} {} at {} {}", s.tool, s.method, s.setting_name, q.setting.map_or("—".into(), |v| format!("{v:e}")));
-                        k.text(format!("{n} fastest peer to error {label}"), run);
-                        time_ratio(
-                            &mut k,
-                            format!("{n} fastest peer to error {label}, time over this project's"),
-                            (q.seconds.unwrap_or(f64::NAN), q.seconds_range.unwrap_or((f64::NAN, f64::NAN))),
-                            (p.ours_seconds, p.ours_seconds_range),
-                        );
-                    }
-                    None => k.text(format!("{n} fastest peer to error {label}"), "none"),
-                }
-            }
-            for s in p.series.iter().filter(|s| s.points.iter().any(|q| q.seconds.is_some())) {
-                let key = format!("{n} {} {}", s.tool, s.method);
-                if let Some(e) = best_error(s, p.first_sticking.is_some()) {
-                    error_key(&mut k, format!("{key} best error"), e);
-                }
-                let ran = s.points.iter().filter(|q| q.seconds.is_some());
-                let stopped = ran.clone().filter(|q| !q.outcome.starts_with("completed")).count();
-                let missed = ran
-                    .filter(|q| q.outcome.starts_with("completed") && !q.clean)
-                    .count();
-                k.integer(format!("{key} runs"), s.points.iter().filter(|q| q.seconds.is_some()).count() as i64);
-                k.integer(format!("{key} runs that stopped early"), stopped as i64);
-                k.integer(format!("{key} runs that missed or added events"), missed as i64);
-            }
-        }
-        error_key(
-            &mut k,
-            "largest error of this project against the references".into(),
-            worst_ours,
-        );
-        for o in &d.orbits {
-            let key = format!("orbit N={} from {} periods", o.modes, o.start_periods);
-            k.integer(format!("{key}: Newton steps"), o.ours_iterations as i64);
-            k.cited(
-                format!("{key}: spectral radius"),
-                o.ours_spectral_radius,
-                6,
-                Uncertainty::new(1e-12, "shooting residual ≤ 1e-12 and the exact monodromy"),
-                "",
-            );
-            error_key(&mut k, format!("{key}: residual under the reference map"), o.reference_residual);
-            if let Some(best) = o
-                .peers
-                .iter()
-                .filter_map(|q| q.multiplier_error)
-                .min_by(f64::total_cmp)
-            {
-                multiplier_key(&mut k, format!("{key}: best peer multiplier error"), best);
-            }
-            let converged = || o.peers.iter().filter(|q| q.outcome == "converged" && q.seconds.is_some());
-            if let Some(q) = converged().min_by(|a, b| a.seconds.unwrap_or(f64::INFINITY).total_cmp(&b.seconds.unwrap_or(f64::INFINITY))) {
-                k.text(format!("{key}: fastest peer"), format!("{} at rtol {:e}", q.method, q.rtol));
-                time_ratio(
-                    &mut k,
-                    format!("{key}: fastest peer, time over this project's"),
-                    (q.seconds.unwrap_or(f64::NAN), q.seconds_range.unwrap_or((f64::NAN, f64::NAN))),
-                    (o.ours_seconds, o.ours_seconds_range),
-                );
-                multiplier_key(&mut k, format!("{key}: fastest peer, multiplier error"), q.multiplier_error.unwrap_or(f64::NAN));
-            }
-            if let Some(r) = o.recomputed_difference {
-                worst_recomputed = worst_recomputed.max(r);
-            }
-        }
-        // a difference at or below 1e-13 is round-off of the same computation on another
-        // machine; above it the committed file is stale
-        k.text(
-            "committed values, largest change on recomputation",
-            if worst_recomputed == 0.0 {
-                "none (bit for bit)".to_string()
-            } else if worst_recomputed <= 1e-13 {
-                "below 1e-13 (round-off)".to_string()
-            } else {
-                format!("{worst_recomputed:.1e} (stale: rerun the peers)")
-            },
-        );
-        k
+        keys::key_numbers(d)
     }
 
     fn verdict(d: &SideBySideData) -> Verdict {
@@ -588,6 +468,7 @@ impl Scene for SideBySide {
         Ok(Rendered {
             extra_tables: vec![
                 ("setup", render::setup(d)),
+                ("includes", render::includes(d)),
                 ("problems", render::problems(d)),
                 ("outcomes", render::outcomes(d)),
                 ("orbits", render::orbits(d)),

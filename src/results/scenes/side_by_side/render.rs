@@ -2,6 +2,7 @@
 //! the side-by-side comparison. No numerics.
 
 use super::{best_error, OrbitData, ProblemData, Series, SideBySideData};
+use crate::results::peers::OWN;
 use crate::base::report::format_sig;
 use crate::results::render::{
     power_of_ten,
@@ -13,22 +14,42 @@ use plotters::prelude::*;
 /// Errors below this are drawn at it (round-off).
 const FLOOR: f64 = 1e-16;
 
-/// The methods in the legend's order: (label, colour index), matched by the start of the
-/// method's name (the first match wins).
-const STYLES: [(&str, &str, usize); 6] = [
-    ("DOP853, largest step", "scipy DOP853, step ≤ T/100", 5),
-    ("DOP853", "scipy DOP853", 0),
-    ("Radau", "scipy Radau (exact Jacobian)", 1),
-    ("LSODA", "scipy LSODA", 2),
-    ("event-driven", "Siconos event-driven (LSODAR)", 3),
-    ("Moreau", "Siconos Moreau–Jean", 4),
+/// The methods in the legend's order: (label, colour), matched by the start of the
+/// method's name (the first match wins). The compiled tools first: CVODE in dark red and
+/// purple, this project's own Dormand–Prince in grey.
+const STYLES: [(&str, &str, Colour); 9] = [
+    ("BDF", "CVODE BDF (C, exact Jacobian)", Colour::Rgb(165, 30, 45)),
+    ("Adams", "CVODE Adams (C)", Colour::Rgb(110, 60, 170)),
+    ("Dormand", "this project's Dormand–Prince 5(4)", Colour::Rgb(120, 120, 120)),
+    ("DOP853, largest step", "scipy DOP853, step ≤ T/100", Colour::Palette(5)),
+    ("DOP853", "scipy DOP853", Colour::Palette(0)),
+    ("Radau", "scipy Radau (exact Jacobian)", Colour::Palette(1)),
+    ("LSODA", "scipy LSODA", Colour::Palette(2)),
+    ("event-driven", "Siconos event-driven (LSODAR)", Colour::Palette(3)),
+    ("Moreau", "Siconos Moreau–Jean", Colour::Palette(4)),
 ];
+
+/// A series' colour: one of the book's palette, or its own.
+#[derive(Clone, Copy)]
+enum Colour {
+    Palette(usize),
+    Rgb(u8, u8, u8),
+}
+
+impl Colour {
+    fn rgb(self) -> RGBColor {
+        match self {
+            Colour::Palette(i) => palette(i),
+            Colour::Rgb(r, g, b) => RGBColor(r, g, b),
+        }
+    }
+}
 
 fn style_of(method: &str) -> Option<(&'static str, RGBColor)> {
     STYLES
         .iter()
         .find(|(prefix, _, _)| method.starts_with(prefix))
-        .map(|(_, label, i)| (*label, palette(*i)))
+        .map(|(_, label, c)| (*label, c.rgb()))
 }
 
 /// A short title for a panel.
@@ -132,13 +153,12 @@ fn draw_ours(chart: &mut Chart, at: (f64, f64)) -> Result<(), RenderError> {
     Ok(())
 }
 
-/// The legend strip across the top.
-/// Height of the legend strip: seven entries in three columns, and the markers' row; or
+/// Height of the legend strip: ten entries in three columns, and the markers' row; or
 /// one entry per row when narrow.
 fn legend_height(layout: Layout) -> u32 {
     match layout {
-        Layout::Wide => 120,
-        Layout::Narrow => 18 + 10 * 28,
+        Layout::Wide => 18 + 5 * 28,
+        Layout::Narrow => 18 + 13 * 28,
     }
 }
 
@@ -149,7 +169,7 @@ fn legend(
     let font = LABEL_FONT.into_font().color(&BLACK);
     let mut entries: Vec<(String, Option<RGBColor>)> = STYLES
         .iter()
-        .map(|(_, label, i)| (label.to_string(), Some(palette(*i))))
+        .map(|(_, label, c)| (label.to_string(), Some(c.rgb())))
         .collect();
     entries.insert(0, ("this project".into(), None));
     let per_row = if layout == Layout::Wide { 3 } else { 1 };
@@ -257,6 +277,13 @@ pub fn plot(d: &SideBySideData, layout: Layout) -> Result<String, RenderError> {
     Ok(svg)
 }
 
+/// A series as the tables name it: its tool and method ("this project's" for its own
+/// Dormand–Prince).
+fn named(s: &Series) -> String {
+    let tool = if s.tool == OWN { "this project's" } else { &s.tool };
+    format!("{tool} {}", s.method)
+}
+
 /// A setting as written: an rtol to one figure, a step count in full.
 fn setting(s: &Series, x: Option<f64>) -> String {
     match x {
@@ -285,17 +312,35 @@ fn time(s: f64) -> String {
     }
 }
 
-/// The fastest clean run of any peer with an error at or below `target`: (label, s).
-fn fastest(p: &ProblemData, target: f64) -> Option<(String, f64)> {
-    let (s, q) = super::fastest(p, target)?;
+/// The fastest clean run with an error at or below `target` of the tools `which` accepts:
+/// (label, s).
+fn fastest(p: &ProblemData, target: f64, which: impl Fn(&str) -> bool) -> Option<(String, f64)> {
+    let (s, q) = super::fastest_of(p, target, which)?;
     Some((style_of(&s.method)?.0.to_string(), q.seconds?))
 }
 
-/// The headline table: per problem, this project beside the fastest peer at two accuracies.
+/// A time over this project's: two figures below 10, whole numbers above.
+fn times(ratio: f64) -> String {
+    if ratio < 10.0 {
+        format!("{}×", format_sig(ratio, 2))
+    } else {
+        format!("{ratio:.0}×")
+    }
+}
+
+/// The headline table: per problem, this project beside the fastest compiled peer (CVODE),
+/// the fastest scipy run, the fastest run of any peer, and this project's own
+/// Dormand–Prince.
 pub fn headline(d: &SideBySideData) -> String {
-    let at = |p: &ProblemData, target: f64| match fastest(p, target) {
-        Some((label, s)) => format!("{label}: {} ({:.0}×)", time(s), s / p.ours_seconds),
-        None => "none".into(),
+    let at = |p: &ProblemData, target: f64, which: &dyn Fn(&str) -> bool, label: bool| {
+        match fastest(p, target, which) {
+            Some((name, s)) if label => {
+                format!("{name}: {} ({})", time(s), times(s / p.ours_seconds))
+            }
+            Some((_, s)) => format!("{} ({})", time(s), times(s / p.ours_seconds)),
+            None if which(OWN) && !p.series.iter().any(|s| s.tool == OWN) => "—".into(),
+            None => "none".into(),
+        }
     };
     let rows: Vec<Vec<String>> = d
         .problems
@@ -310,8 +355,10 @@ pub fn headline(d: &SideBySideData) -> String {
             vec![
                 short(p),
                 format!("{} ({})", time(p.ours_seconds), sig(Some(p.ours_error), 1)),
-                at(p, 1e-6),
-                at(p, 1e-9),
+                at(p, 1e-9, &|t| t == "CVODE", true),
+                at(p, 1e-9, &|t| t == "scipy", true),
+                at(p, 1e-6, &|t| t != OWN, true),
+                at(p, 1e-9, &|t| t == OWN, false),
                 sig(best, 1),
             ]
         })
@@ -319,13 +366,25 @@ pub fn headline(d: &SideBySideData) -> String {
     markdown_table(
         &[
             "problem",
-            "this project: time (error)",
-            "fastest peer to error ≤ 10⁻⁶ (× our time)",
-            "fastest peer to error ≤ 10⁻⁹ (× our time)",
+            "this project: CPU time (error)",
+            "CVODE to error ≤ 10⁻⁹ (× our time)",
+            "scipy to error ≤ 10⁻⁹ (× our time)",
+            "any peer to error ≤ 10⁻⁶ (× our time)",
+            "this project's Dormand–Prince to ≤ 10⁻⁹ (× our time)",
             "smallest peer error",
         ],
         &rows,
     )
+}
+
+/// What each tool's time includes.
+pub fn includes(d: &SideBySideData) -> String {
+    let rows: Vec<Vec<String>> = d
+        .includes
+        .iter()
+        .map(|(tool, what)| vec![tool.clone(), what.clone()])
+        .collect();
+    markdown_table(&["tool", "its time is"], &rows)
 }
 
 /// A run's outcome as a reader should see it: Siconos reports a failure of its
@@ -346,8 +405,10 @@ pub fn setup(d: &SideBySideData) -> String {
         vec![
             "timing".into(),
             format!(
-                "CPU time, median of {} runs alternated; a ladder stops after a run over {} s",
-                d.repeats, d.budget_seconds
+                "CPU time of the solve alone, set-up apart, one thread: the best of {} runs \
+                 alternated between the tools (a compiled tool's run: the best of up to {} \
+                 solves, until 1 s of CPU); a ladder stops after a run over {} s",
+                d.repeats, d.inner_repeats, d.budget_seconds
             ),
         ],
     ];
@@ -363,6 +424,8 @@ pub fn setup(d: &SideBySideData) -> String {
             "scipy" => "SciPy",
             "siconos" => "Siconos",
             "rustc" => "Rust compiler",
+            "sundials" => "SUNDIALS (CVODE)",
+            "cc" => "C compiler (CVODE's right-hand side)",
             other => other,
         };
         rows.push(vec![name.to_string(), v.clone()]);
@@ -430,7 +493,7 @@ pub fn outcomes(d: &SideBySideData) -> String {
             };
             rows.push(vec![
                 short(p),
-                format!("{} {}", s.tool, s.method),
+                named(s),
                 format!("{} of {} ({})", bad.len(), ran, settings.join(", ")),
                 what,
             ]);
@@ -497,7 +560,7 @@ pub fn runs(d: &SideBySideData) -> String {
             short(p),
             "this project".into(),
             "—".into(),
-            format!("{} / {}", time(p.ours_seconds), time(p.ours_process_seconds)),
+            format!("{} (set-up {})", time(p.ours_seconds), time(p.ours_setup_seconds)),
             format!("{}", p.ours_events),
             sig(Some(p.ours_error), 2),
             "completed".into(),
@@ -506,7 +569,7 @@ pub fn runs(d: &SideBySideData) -> String {
             for q in &s.points {
                 rows.push(vec![
                     short(p),
-                    format!("{} {}", s.tool, s.method),
+                    named(s),
                     setting(s, q.setting),
                     q.seconds.map_or("—".into(), time),
                     q.events.map_or("—".into(), |n| n.to_string()),
@@ -521,7 +584,7 @@ pub fn runs(d: &SideBySideData) -> String {
             "problem",
             "method",
             "rtol or steps per period",
-            "CPU time (this project: run / process)",
+            "CPU time, best (this project: its set-up apart)",
             "events",
             "error against the reference",
             "outcome",
