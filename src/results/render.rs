@@ -442,10 +442,20 @@ pub fn palette(i: usize) -> RGBColor {
 /// A markdown table from a header and rows of cells: the first column left-aligned, the
 /// rest right-aligned.
 pub fn markdown_table(header: &[&str], rows: &[Vec<String>]) -> String {
+    table(header, rows, "---:|")
+}
+
+/// A markdown table whose cells are sentences: every column left-aligned (a sentence set
+/// flush right is hard to read).
+pub fn markdown_text_table(header: &[&str], rows: &[Vec<String>]) -> String {
+    table(header, rows, ":---|")
+}
+
+fn table(header: &[&str], rows: &[Vec<String>], others: &str) -> String {
     let mut s = format!("| {} |\n|", readable_text(&header.join(" | ")));
-    // the first column names the row (left); the others hold numbers (right)
+    // the first column names the row (left); the others hold numbers (right) or text
     for i in 0..header.len() {
-        s.push_str(if i == 0 { ":---|" } else { "---:|" });
+        s.push_str(if i == 0 { ":---|" } else { others });
     }
     s.push('\n');
     for r in rows {

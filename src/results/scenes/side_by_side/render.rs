@@ -6,7 +6,7 @@ use crate::results::peers::OWN;
 use crate::base::report::format_sig;
 use crate::results::render::{
     power_of_ten,
-    drawing, markdown_table, palette, styled_mesh, RenderError, CAPTION_FONT, LABEL_FONT,
+    drawing, markdown_table, markdown_text_table, palette, styled_mesh, RenderError, CAPTION_FONT, LABEL_FONT,
 };
 use crate::results::narrow::Layout;
 use plotters::prelude::*;
@@ -384,7 +384,7 @@ pub fn includes(d: &SideBySideData) -> String {
         .iter()
         .map(|(tool, what)| vec![tool.clone(), what.clone()])
         .collect();
-    markdown_table(&["tool", "its time is"], &rows)
+    markdown_text_table(&["tool", "its time is"], &rows)
 }
 
 /// A run's outcome as a reader should see it: Siconos reports a failure of its
@@ -430,7 +430,7 @@ pub fn setup(d: &SideBySideData) -> String {
         };
         rows.push(vec![name.to_string(), v.clone()]);
     }
-    markdown_table(&["setting", "value"], &rows)
+    markdown_text_table(&["setting", "value"], &rows)
 }
 
 /// The problems and their references.
