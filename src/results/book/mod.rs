@@ -423,19 +423,7 @@ pub fn summary_table(scenes: &[&dyn Entry], outputs: &[SceneNumbers]) -> String 
     s
 }
 
-/// "partly reproduced" → "Partly reproduced"; a sentence that starts with a symbol (r_E,
-/// k/k₁, ω, d₀) keeps it as it is: a symbol is a single letter other than the word "a".
-pub(crate) fn capitalised(s: &str) -> String {
-    let word: String = s.chars().take_while(|c| c.is_alphabetic()).collect();
-    let after = s[word.len()..].chars().next();
-    if word.chars().count() < 2 && !(word == "a" && after == Some(' ')) {
-        return s.to_string();
-    }
-    let mut c = s.chars();
-    c.next()
-        .map(|f| f.to_uppercase().chain(c).collect())
-        .unwrap_or_default()
-}
+pub(crate) use crate::results::names::capitalised;
 
 /// A file size for a link: "640 kB", "15.5 MB".
 fn human_size(bytes: u64) -> String {

@@ -214,13 +214,19 @@ pub fn annotate(scene: &str, key_numbers: &mut serde_json::Value) {
     }
 }
 
-/// The name with its first letter capitalised, to begin a sentence.
+/// "partly reproduced" → "Partly reproduced", "the first impact velocity …" → "The first
+/// …"; a sentence that starts with a symbol (r_E, k/k₁, ω, d₀) keeps it as it is: a symbol
+/// is a single letter other than the word "a".
 pub fn capitalised(s: &str) -> String {
-    let mut c = s.chars();
-    match c.next() {
-        Some(f) => f.to_uppercase().collect::<String>() + c.as_str(),
-        None => String::new(),
+    let word: String = s.chars().take_while(|c| c.is_alphabetic()).collect();
+    let after = s[word.len()..].chars().next();
+    if word.chars().count() < 2 && !(word == "a" && after == Some(' ')) {
+        return s.to_string();
     }
+    let mut c = s.chars();
+    c.next()
+        .map(|f| f.to_uppercase().chain(c).collect())
+        .unwrap_or_default()
 }
 
 /// What a name must not contain: a code spelling a reader would have to decode (a word with
@@ -264,6 +270,13 @@ mod tests {
             symbols("grazing omega at k=50, N=3"),
             "grazing ω at k = 50k₁, N = 3"
         );
+    }
+
+    #[test]
+    fn a_name_that_starts_with_a_symbol_keeps_it() {
+        assert_eq!(capitalised("k/k₁ of the pin"), "k/k₁ of the pin");
+        assert_eq!(capitalised("ε where k = k₂"), "ε where k = k₂");
+        assert_eq!(capitalised("the orbit"), "The orbit");
     }
 
     #[test]
