@@ -1,5 +1,6 @@
 //! Names in words (`results::names`): every published key number of every scene and every
 //! parameter of every scene has one, without a code spelling.
+#![cfg(feature = "plots")]
 
 use impacting_cantilever::results::names::{self, parameters};
 use impacting_cantilever::results::scene::Resolution;
