@@ -5,10 +5,11 @@
 //! its name ("the first impact velocity of the periodic orbit (N = 3)") is how a reader
 //! refers to it. A key is read as a few leading qualifiers (`N=3`, `k/k1=1000`, `i=2`,
 //! `eps=1.000e-4`, `omega=2`, `k=1e6`, `tol=1e-2`) and a quantity: the quantity is named by
-//! the scene's vocabulary ([`vocabulary`]), or, for a quantity already written in words, by
-//! spelling its symbols ([`symbols`]); the qualifiers that the name does not use follow in
-//! parentheses. The test below names every published key number of every scene and fails for
-//! one whose name keeps a code spelling, or for two keys of a scene with the same name.
+//! the scene's vocabulary (the private module `vocabulary`), or, for a quantity already
+//! written in words, by spelling its symbols ([`symbols`]); the qualifiers that the name does
+//! not use follow in parentheses. The test below names every published key number of every
+//! scene and fails for one whose name keeps a code spelling, or for two keys of a scene with
+//! the same name.
 
 pub mod parameters;
 mod vocabulary;
