@@ -87,6 +87,14 @@ fn book_builds_with_rendered_math_plots_and_tables() {
             "{chapter}: a table did not render"
         );
     }
+    // the chapter From Python says where its outputs come from: here (a copy of the book
+    // with no repository around it) the committed ones, and why
+    let python = std::fs::read_to_string(tmp.join("build/python.html")).unwrap();
+    assert!(
+        python.contains("built without the Python package of its own build (the chapter"),
+        "the Python chapter's provenance"
+    );
+    assert!(tmp.join("build/generated/python/bifurcation.png").is_file());
     // the worked example of "Changing the model" was computed in the build: the method
     // change moves nothing beyond its uncertainty, the model change does
     let generated = tmp.join("src/generated/changing-the-model");

@@ -12,7 +12,11 @@
 
 Run it from the repository root with the package installed (``pip install "./python[plot]"``):
 
-    python python/bench/chapter.py
+    python python/bench/chapter.py [--out DIR]
+
+``--out`` writes the files into DIR instead (the names are the same): ``cantilever book``
+runs it so into ``book/src/generated/python/`` when the package of its own build is
+installed, so that the chapter shows what that build prints and measures.
 
 The Rust reference is timed inside the extension (``_core.time_rust``): the same library
 calls with no Python in the loop, so the difference is exactly what the binding adds —
@@ -76,12 +80,12 @@ def script_output(name: str, directory: Path) -> str:
     return buffer.getvalue()
 
 
-def outputs() -> None:
-    """Writes every printed output of the chapter (and its figure) into OUT."""
-    (OUT / "error-example.txt").write_text(error_text())
+def outputs(out: Path) -> None:
+    """Writes every printed output of the chapter (and its figure) into ``out``."""
+    (out / "error-example.txt").write_text(error_text())
     for name in SCRIPTS:
-        text = script_output(name, OUT)
-        (OUT / f"{name}-output.txt").write_text(text)
+        text = script_output(name, out)
+        (out / f"{name}-output.txt").write_text(text)
         print(text)
 
 
@@ -136,7 +140,7 @@ def seconds(x: float) -> str:
     return f"{x:.2f} s"
 
 
-def measure() -> None:
+def measure(out: Path) -> None:
     rows, raw, overheads = [], [], []
     for label, call, reference, repeats in cases():
         call()  # warm up (first-use tables, page faults)
@@ -191,12 +195,19 @@ def measure() -> None:
         f"run whose dense output of several megabytes becomes numpy arrays {said(*dense)}. "
         "The spread is the median of the Rust call's repeats less their fastest."
     )
-    (OUT / "overhead.md").write_text(f"{table}\n\n{info}\n\n{summary}\n")
-    (OUT / "overhead.json").write_text(json.dumps({"info": info, "calls": raw}, indent=1) + "\n")
+    (out / "overhead.md").write_text(f"{table}\n\n{info}\n\n{summary}\n")
+    (out / "overhead.json").write_text(json.dumps({"info": info, "calls": raw}, indent=1) + "\n")
     print(table)
     print(info)
 
 
 if __name__ == "__main__":
-    outputs()
-    measure()
+    import argparse
+
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--out", type=Path, default=OUT, help="the folder to write into")
+    out = parser.parse_args().out.resolve()
+    if not out.is_dir():
+        parser.error(f"--out: {out} is not a folder")
+    outputs(out)
+    measure(out)

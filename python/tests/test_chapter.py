@@ -5,6 +5,7 @@ includes (regenerate them with ``python python/bench/chapter.py``)."""
 from __future__ import annotations
 
 import importlib.util
+import os
 from pathlib import Path
 
 import pytest
@@ -27,3 +28,32 @@ def test_each_scripts_output_is_this_builds(name: str, tmp_path: Path) -> None:
 
 def test_the_error_example_is_this_builds() -> None:
     assert chapter.error_text() == (chapter.OUT / "error-example.txt").read_text()
+
+
+def test_the_book_build_can_run_the_chapter_into_a_folder(tmp_path: Path) -> None:
+    """``cantilever book`` runs ``chapter.py --out DIR`` when the package of its own build is
+    installed (src/results/book/python.rs): the script must write every file the book
+    takes from it (that module's FILES), into DIR and nowhere else."""
+    import re
+    import subprocess
+    import sys
+
+    rust = (ROOT / "src" / "results" / "book" / "python.rs").read_text()
+    listed = re.search(r"pub const FILES: \[&str; \d+\] = \[(.*?)\];", rust, re.S)
+    assert listed is not None, "FILES in src/results/book/python.rs"
+    files = set(re.findall(r'"([^"]+)"', listed.group(1)))
+    committed = {p: p.stat().st_mtime_ns for p in chapter.OUT.iterdir()}
+    subprocess.run(
+        [sys.executable, str(ROOT / "python" / "bench" / "chapter.py"), "--out", str(tmp_path)],
+        check=True,
+        cwd=ROOT,
+        # the package this test imports, whatever the working folder
+        env={**os.environ, "MPLBACKEND": "Agg", "PYTHONPATH": os.pathsep.join(sys.path)},
+        stdout=subprocess.DEVNULL,
+    )
+    assert files <= {p.name for p in tmp_path.iterdir()}
+    assert {p: p.stat().st_mtime_ns for p in chapter.OUT.iterdir()} == committed
+    for name in chapter.SCRIPTS:
+        assert (tmp_path / f"{name}-output.txt").read_text() == (
+            chapter.OUT / f"{name}-output.txt"
+        ).read_text()

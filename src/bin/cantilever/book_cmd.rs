@@ -45,6 +45,14 @@ pub(super) fn book_command(
     for (name, why) in &report.refreshed {
         errln!("scene {name:<18}   recomputed: {why}");
     }
+    match &report.python {
+        impacting_cantilever::results::book::python::Source::ThisBuild { python } => {
+            errln!("the Python chapter: computed by this build's package ({python})")
+        }
+        impacting_cantilever::results::book::python::Source::Committed { why } => {
+            errln!("the Python chapter: its committed outputs ({why})")
+        }
+    }
     errln!("book built in {:.2} s", report.book_seconds);
     errln!(
         "done in {:.2} s: open {}",

@@ -10,6 +10,7 @@
 mod build_dir;
 mod math;
 mod numbers;
+pub mod python;
 pub mod reuse;
 mod worked;
 
@@ -57,6 +58,8 @@ pub struct BuildReport {
     /// Scenes not asked for but recomputed, with the reason their previous output was not
     /// current.
     pub refreshed: Vec<(String, String)>,
+    /// Where the chapter *From Python* took its outputs from.
+    pub python: python::Source,
     /// mdBook's own time (s).
     pub book_seconds: f64,
     /// The whole build (s).
@@ -221,6 +224,8 @@ pub fn build_only(
         .first()
         .map(|o| o.provenance.clone())
         .unwrap_or_else(|| Provenance::now("book"));
+    // run alone, after the scenes: its table measures times
+    let python = python::write(root, &generated, &Provenance::now("book"), progress)?;
     scene::write_atomically(&generated.join("citation.md"), &citation(&provenance))?;
     scene::write_atomically(&generated.join("cite-example.md"), &cite_example())?;
     let schematic = crate::results::schematic::svg().map_err(|e| anyhow::anyhow!("{e}"))?;
@@ -319,6 +324,7 @@ pub fn build_only(
         scene_seconds,
         reused,
         refreshed,
+        python,
         book_seconds: t.elapsed().as_secs_f64(),
         total_seconds: started.elapsed().as_secs_f64(),
         index: root.join("build").join("index.html"),
