@@ -39,6 +39,9 @@ pub const PROVENANCE: &str = "provenance.md";
 /// The script takes ~15 s; a hung interpreter must not hold the book for ever.
 const LIMIT: Duration = Duration::from_secs(600);
 
+/// Importing the package takes well under a second.
+const PROBE_LIMIT: Duration = Duration::from_secs(60);
+
 /// Where the chapter's outputs came from in this build.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Source {
@@ -74,29 +77,27 @@ fn same_build(probe: &Probe, build: &Provenance) -> std::result::Result<(), Stri
         Some(true) => {
             return Err(
                 "this build has uncommitted changes, so no installed package can be \
-                 shown to be the same build"
+                 shown to be of the same build"
                     .to_string(),
             )
         }
         None => {
             return Err(
                 "this build was not made from a git checkout, so no installed \
-                 package can be shown to be the same build"
+                 package can be shown to be of the same build"
                     .to_string(),
             )
         }
     }
     if probe.commit != build.commit {
         return Err(format!(
-            "the installed package was built from commit {}, not this build's {}",
+            "the installed one was built from commit {}, not this build's {}",
             short(&probe.commit),
             short(&build.commit)
         ));
     }
     if probe.dirty != Some(false) {
-        return Err(
-            "the installed package was built from a tree with uncommitted changes".to_string(),
-        );
+        return Err("the installed one was built from a tree with uncommitted changes".to_string());
     }
     Ok(())
 }
@@ -106,23 +107,80 @@ fn short(commit: &str) -> &str {
 }
 
 /// Asks `python3` (from the repository root `repo`) which package it imports.
-fn probe(repo: &Path) -> std::result::Result<Probe, String> {
-    let out = Command::new("python3")
-        .args(["-c", PROBE])
-        .current_dir(repo)
-        .stdin(Stdio::null())
-        .output()
-        .map_err(|e| format!("no python3 to run ({e})"))?;
-    if !out.status.success() {
-        let err = String::from_utf8_lossy(&out.stderr);
-        let last = err.lines().last().unwrap_or("").trim();
+fn probe(repo: &Path, scratch: &Path) -> std::result::Result<Probe, String> {
+    let ran = python3(repo, &["-c".as_ref(), PROBE.as_ref()], PROBE_LIMIT, scratch)?;
+    if !ran.success {
         return Err(format!(
-            "python3 cannot import the package with matplotlib ({last}; `pip install \
-             \"./python[plot]\"` installs both)"
+            "python3 could not import it with matplotlib: {}",
+            ran.last_error
         ));
     }
-    serde_json::from_slice(&out.stdout)
-        .map_err(|e| format!("python3 described its package in an unexpected form ({e})"))
+    serde_json::from_slice(&ran.stdout)
+        .map_err(|e| format!("python3 described the package in an unexpected form: {e}"))
+}
+
+/// What a run of `python3` left.
+struct Ran {
+    success: bool,
+    stdout: Vec<u8>,
+    /// The last line it wrote to its standard error (a traceback's exception).
+    last_error: String,
+}
+
+/// Runs `python3 args` from `repo`, killed after `limit`; its output goes through files in
+/// `scratch` (a pipe left unread could fill and stall it). `Err` when it cannot start or
+/// runs past the limit.
+fn python3(
+    repo: &Path,
+    args: &[&std::ffi::OsStr],
+    limit: Duration,
+    scratch: &Path,
+) -> std::result::Result<Ran, String> {
+    let (out, err) = (scratch.join(".stdout"), scratch.join(".stderr"));
+    let file = |p: &Path| std::fs::File::create(p).map_err(|e| format!("{}: {e}", p.display()));
+    let mut child = Command::new("python3")
+        .args(args)
+        .current_dir(repo)
+        .env("MPLBACKEND", "Agg")
+        .stdin(Stdio::null())
+        .stdout(file(&out)?)
+        .stderr(file(&err)?)
+        .spawn()
+        .map_err(|e| match e.kind() {
+            std::io::ErrorKind::NotFound => "no python3 was found".to_string(),
+            _ => format!("python3 could not be started: {e}"),
+        })?;
+    let started = Instant::now();
+    let status = loop {
+        match child.try_wait() {
+            Ok(Some(s)) => break s,
+            Ok(None) if started.elapsed() > limit => {
+                let _ = child.kill();
+                let _ = child.wait();
+                return Err(format!(
+                    "python3 did not finish within {} s and was stopped",
+                    limit.as_secs()
+                ));
+            }
+            Ok(None) => std::thread::sleep(Duration::from_millis(20)),
+            Err(e) => return Err(format!("waiting for python3: {e}")),
+        }
+    };
+    let stdout = std::fs::read(&out).unwrap_or_default();
+    let stderr = std::fs::read(&err).unwrap_or_default();
+    let _ = std::fs::remove_file(&out);
+    let _ = std::fs::remove_file(&err);
+    let last_error = String::from_utf8_lossy(&stderr)
+        .lines()
+        .last()
+        .unwrap_or("")
+        .trim()
+        .to_string();
+    Ok(Ran {
+        success: status.success(),
+        stdout,
+        last_error,
+    })
 }
 
 /// Puts the chapter's files into `generated/python/` (`generated` is the book's generated
@@ -171,12 +229,9 @@ fn stage_files(
     let repo = book_root.parent().unwrap_or(&book_root).to_path_buf();
     let script = repo.join("python").join("bench").join("chapter.py");
     let ours = if script.is_file() {
-        probe(&repo).and_then(|p| same_build(&p, build).map(|()| p))
+        probe(&repo, stage).and_then(|p| same_build(&p, build).map(|()| p))
     } else {
-        Err(format!(
-            "the chapter's script is not beside the book ({})",
-            script.display()
-        ))
+        Err("there is no python/bench/chapter.py beside the book".to_string())
     };
     match ours {
         Ok(p) => {
@@ -203,41 +258,15 @@ fn stage_files(
 
 /// Runs the chapter's script into `stage`, within [`LIMIT`].
 fn run_script(repo: &Path, script: &Path, stage: &Path) -> Result<()> {
-    let log = stage.join(".log");
-    let mut child = Command::new("python3")
-        .arg(script)
-        .arg("--out")
-        .arg(stage)
-        .current_dir(repo)
-        .env("MPLBACKEND", "Agg")
-        .stdin(Stdio::null())
-        .stdout(std::fs::File::create(&log).context("creating the script's log")?)
-        .stderr(Stdio::piped())
-        .spawn()
-        .context("starting python3 python/bench/chapter.py")?;
-    let started = Instant::now();
-    let status = loop {
-        if let Some(s) = child.try_wait().context("waiting for the Python chapter")? {
-            break s;
-        }
-        if started.elapsed() > LIMIT {
-            let _ = child.kill();
-            let _ = child.wait();
-            bail!(
-                "python3 python/bench/chapter.py ran past {} s",
-                LIMIT.as_secs()
-            );
-        }
-        std::thread::sleep(Duration::from_millis(50));
-    };
-    let _ = std::fs::remove_file(&log);
-    if !status.success() {
-        let mut err = String::new();
-        if let Some(mut e) = child.stderr.take() {
-            let _ = std::io::Read::read_to_string(&mut e, &mut err);
-        }
-        let last = err.lines().last().unwrap_or("").trim().to_string();
-        bail!("python3 python/bench/chapter.py failed ({status}): {last}");
+    let ran = python3(
+        repo,
+        &[script.as_os_str(), "--out".as_ref(), stage.as_os_str()],
+        LIMIT,
+        stage,
+    )
+    .map_err(|why| anyhow::anyhow!("python3 python/bench/chapter.py: {why}"))?;
+    if !ran.success {
+        bail!("python3 python/bench/chapter.py failed: {}", ran.last_error);
     }
     Ok(())
 }
@@ -329,8 +358,8 @@ mod tests {
         });
         assert!(now.contains("while this book was built") && now.contains("CPython 3.11.7"));
         let then = provenance_sentence(&Source::Committed {
-            why: "no python3 to run".into(),
+            why: "no python3 was found".into(),
         });
-        assert!(then.contains("(no python3 to run)") && then.contains("commit the table names"));
+        assert!(then.contains("(no python3 was found)") && then.contains("commit the table names"));
     }
 }
