@@ -27,7 +27,10 @@ def test_equal_models_are_equal_and_hash_alike() -> None:
 def _published(scene: str, key: str) -> tuple[float, float]:
     """A published key number's value and the half-width its print and ± allow."""
     text = ic.citation.number(scene, key)
-    m = re.match(rf"{re.escape(key)} = ([-0-9.e]+) ± ([0-9.e-]+)", text)
+    # the sentence names the number in words ("The first impact velocity …: 1.60201 ± …");
+    # the listing under it gives its key
+    assert re.search(rf"^\s+key\s+{re.escape(key)}$", text, re.M), text
+    m = re.match(r"[^\n]*?: ([-0-9.e]+) ± ([0-9.e-]+) ", text)
     assert m, text
     value, plus_minus = float(m.group(1)), float(m.group(2))
     digits = m.group(1).split("e")[0]
