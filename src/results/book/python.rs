@@ -188,8 +188,8 @@ fn python3(
 /// saying where they come from.
 ///
 /// # Errors
-/// The script of this build's package failing, running past [`LIMIT`] or leaving a file
-/// out; a committed file missing; a file that cannot be written.
+/// The script of this build's package failing, running past its time limit (600 s) or
+/// leaving a file out; a committed file missing; a file that cannot be written.
 pub fn write(
     book_root: &Path,
     generated: &Path,
