@@ -1,6 +1,6 @@
 //! The rigid-impact model (§3) with a restitution law of your choice: three modes, the
 //! paper's forcing at resonance (ω = (β₁⁻)², free tip amplitude 1) with the stop
-//! at d₀ = 0.5, and the impulse-response law [R]_IR with r = 0.8 (try
+//! at d₀ = 0.5, and the impulse-response law `[R]_IR` with r = 0.8 (try
 //! `restitution::stiffness_limit(3, 0.8)` or `restitution::collocation`).
 //!
 //! `cargo run --release --example rigid_impact`
