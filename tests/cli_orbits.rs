@@ -156,16 +156,20 @@ fn atlas_shards_merge_into_the_unsharded_atlas() {
     std::fs::create_dir_all(&dir).unwrap();
     let path = |name: &str| dir.join(name).display().to_string();
     // a fixed N: the shards agree on each row's N by construction (the matched rule's
-    // agreement across shards is the library's identity test)
+    // agreement across shards is the library's identity test); N = 2 on 3 × 3 cells has a
+    // grazing curve between them, traced in half a second (at N = 10 on 2 × 2 the curve of
+    // a (1,10) orbit took 6 s per merge in the debug profile)
     let small = [
         "--resolution",
         "test",
         "--k-points",
-        "2",
+        "3",
         "--omega-points",
-        "2",
+        "3",
         "--modes",
-        "10",
+        "2",
+        "--curves",
+        "1",
     ];
     let atlas = |shard: &str, out: &str| {
         let (code, _, err) =
@@ -196,6 +200,11 @@ fn atlas_shards_merge_into_the_unsharded_atlas() {
         v["data"].clone()
     };
     assert_eq!(data("merged"), data("one"));
+    let curves = &data("merged")["curves"]["curves"];
+    assert!(
+        curves.as_array().is_some_and(|c| !c.is_empty()),
+        "a curve is traced: {curves}"
+    );
     let svg = |out: &str| std::fs::read_to_string(dir.join(out).join("plot.svg")).unwrap();
     assert_eq!(svg("merged"), svg("one"));
     // bad input: exit 2 and one line naming what is wrong
