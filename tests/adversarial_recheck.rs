@@ -157,10 +157,31 @@ fn a_rigid_window_cut_short_is_printed_but_exits_1() {
 
 #[test]
 fn a_run_that_would_take_weeks_says_so_within_seconds() {
-    // --periods 1e8 is legal; at a chattering stiff stop it would take weeks. The run
-    // projects its time after 2 s and says it on stderr (a pipe here, not a terminal) — a
-    // simulation, and the transient before an orbit or a branch (which printed nothing);
-    // Ctrl-C then stops it at once, with status 130.
+    projects_its_time_and_stops_at_once(&[(vec!["simulate"], "simulate: periods: about ")]);
+}
+
+/// The orbit's and the branch's transients: as the simulation (each run measures its rate
+/// for 2 s on a core of its own, so these two are the README's test command's).
+#[cfg_attr(
+    not(feature = "published"),
+    ignore = "heavy: the README's test command runs it"
+)]
+#[test]
+fn an_orbit_or_branch_that_would_take_weeks_says_so_within_seconds() {
+    projects_its_time_and_stops_at_once(&[
+        (vec!["orbit"], "orbit: transient periods: about "),
+        (
+            vec!["continue", "--parameter", "omega", "--to", "0.7"],
+            "orbit: transient periods: about ",
+        ),
+    ]);
+}
+
+/// `runs` (a command and the start of the line it prints): --periods 1e8 is legal; at a
+/// chattering stiff stop it would take weeks. The run projects its time after 2 s and says
+/// it on stderr (a pipe here, not a terminal) — a simulation, and the transient before an
+/// orbit or a branch (which printed nothing); Ctrl-C then stops it at once, with status 130.
+fn projects_its_time_and_stops_at_once(runs: &[(Vec<&str>, &str)]) {
     use std::io::BufRead;
     let model = [
         "--modes",
@@ -176,15 +197,7 @@ fn a_run_that_would_take_weeks_says_so_within_seconds() {
         "--periods",
         "100000000",
     ];
-    let runs = [
-        (vec!["simulate"], "simulate: periods: about "),
-        (vec!["orbit"], "orbit: transient periods: about "),
-        (
-            vec!["continue", "--parameter", "omega", "--to", "0.7"],
-            "orbit: transient periods: about ",
-        ),
-    ];
-    // all three at once: each measures its own rate for 2 s
+    // all at once: each measures its own rate for 2 s
     let children: Vec<_> = runs
         .iter()
         .map(|(command, _)| {
@@ -218,7 +231,7 @@ fn a_run_that_would_take_weeks_says_so_within_seconds() {
         }
     }
     let mut guard = KillOnDrop(children.iter().map(|(c, _)| c.id()).collect());
-    for ((mut child, receive), (command, start)) in children.into_iter().zip(&runs) {
+    for ((mut child, receive), (command, start)) in children.into_iter().zip(runs) {
         // 2 s of measuring, and a debug build's first periods
         let line = receive.recv_timeout(std::time::Duration::from_secs(120));
         let line = line.unwrap_or_else(|_| {

@@ -330,17 +330,9 @@ fn figure_4_verdicts_and_their_evidence() {
             "N={}: looser root tolerance",
             p.modes
         );
-        let (n_ref, dt) = e.reference.unwrap();
-        let OrbitKind::Periodic { n, .. } = p.kind else {
-            panic!("periodic")
-        };
-        assert_eq!(
-            n_ref, n,
-            "N={}: DP5 finds the same contacts per period",
-            p.modes
-        );
-        // DP5 at rtol 1e-10 over ~1040 periods: event times within 1e-8 of the exact ones
-        assert!(dt.unwrap() < 1e-8, "N={}: {:?}", p.modes, dt);
+        // the Dormand–Prince reference is the book's (its contacts per period and event
+        // times are published checks: tests/snapshots/published__book-fig4.record.json)
+        assert!(e.reference.is_none());
         assert!(
             e.random_starts.iter().all(|(k, _)| *k == p.kind),
             "no coexisting attractor seen"
@@ -541,28 +533,36 @@ fn the_energetic_restitution_map_is_converged_where_it_is_coloured_and_thread_in
     assert_eq!(n as f64, needed.needed.modes().ceil().max(10.0));
     assert!(n > 10, "{n}");
     let p = MapParams::test();
-    let run = |threads| {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap()
-            .install(|| compute(&p, &impacting_cantilever::results::scene::Silent).unwrap())
+    let whole = cached::<EnergeticMap>(&MAP);
+    // a part of the map on one thread (on a one-core machine, on two): each point is a
+    // function of its own (ω, k) alone, so its cells are bitwise those of the whole map's
+    // run on the global pool, whatever the thread count and the grid around it
+    let part = MapParams {
+        omega_over_w1: vec![2.0],
+        k_over_k1: vec![10.0, 1000.0],
+        ..p.clone()
     };
-    // the scene's own run (the global pool: one thread per core) against one thread; on a
-    // one-core machine, against two threads
-    let one = run(1);
-    let two;
-    let many = if rayon::current_num_threads() >= 2 {
-        cached::<EnergeticMap>(&MAP)
+    let threads = if rayon::current_num_threads() >= 2 {
+        1
     } else {
-        two = run(2);
-        &two
+        2
     };
-    for (a, b) in one.points.iter().zip(&many.points) {
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap()
+        .install(|| compute(&part, &impacting_cantilever::results::scene::Silent).unwrap());
+    assert_eq!(one.points.len(), 2);
+    for a in &one.points {
+        let b = whole
+            .points
+            .iter()
+            .find(|q| q.omega_over_w1 == a.omega_over_w1 && q.k_over_k1 == a.k_over_k1)
+            .unwrap();
         assert_eq!(a.cell, b.cell, "bitwise the same whatever the thread count");
     }
     // every coloured point agrees with N + 10 modes to the stated tolerance
-    for q in &one.points {
+    for q in &whole.points {
         if let Cell::Value(r) = q.cell {
             let fine = q.refined.1.unwrap().value().unwrap();
             assert!((r - fine).abs() <= p.convergence_tolerance);
@@ -571,7 +571,7 @@ fn the_energetic_restitution_map_is_converged_where_it_is_coloured_and_thread_in
     }
     // at (ω, k) = (2, 1000k₁) the map and Figure 6(b) compute the same model (N = 15
     // here, 20 there): their r_E agree within the map's convergence tolerance
-    let b = one
+    let b = whole
         .points
         .iter()
         .find(|q| q.omega_over_w1 == 2.0 && q.k_over_k1 == 1000.0)

@@ -23,10 +23,16 @@ pub fn trace(
     m: u64,
     settings: &Settings,
 ) -> Result<Vec<Branch>, Error> {
-    let mut branches = vec![continue_branch(family, x0, p0, m, 1.0, settings)?];
+    // both directions at once (on two cores, half the time); the downward one is kept only
+    // where the upward one did not close on itself, so the result is as if traced in turn
+    let (up, down) = rayon::join(
+        || continue_branch(family, x0, p0, m, 1.0, settings),
+        || continue_branch(family, x0, p0, m, -1.0, settings),
+    );
+    let mut branches = vec![up?];
     // a closed branch has been traced whole in one direction
     if !branches[0].end.starts_with("closed loop") {
-        branches.push(continue_branch(family, x0, p0, m, -1.0, settings)?);
+        branches.push(down?);
     }
     let mut next = 0;
     while next < branches.len() && branches.len() < settings.max_branches {

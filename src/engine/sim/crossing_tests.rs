@@ -184,16 +184,24 @@ fn many_modes_over_twelve_decades() {
     let s_max = 3.0;
     // the search starts below the level (as in a region): levels above d(0)
     let d0 = sig.tip(0.0).0;
-    for level in [d0 + 0.05, d0 + 0.3, d0 + 0.6, d0 + 0.9] {
-        // the fastest pair has period 2π/3481: 400 samples of it per step
-        let reference = brute_force(&sig, level, s_max, 2.0 * PI / 3481.0 / 400.0);
-        let found = find(&sig, level, s_max);
-        match (found, reference) {
-            (Some(a), Some(b)) => assert!((a - b).abs() < 1e-12, "level {level}: {a} vs {b}"),
-            (None, None) => {}
-            other => panic!("level {level}: {other:?}"),
+    // the levels side by side: the brute force is this test's cost (~10⁶ samples a level)
+    std::thread::scope(|scope| {
+        for level in [d0 + 0.05, d0 + 0.3, d0 + 0.6, d0 + 0.9] {
+            let sig = &sig;
+            scope.spawn(move || {
+                // the fastest pair has period 2π/3481: 400 samples of it per step
+                let reference = brute_force(sig, level, s_max, 2.0 * PI / 3481.0 / 400.0);
+                let found = find(sig, level, s_max);
+                match (found, reference) {
+                    (Some(a), Some(b)) => {
+                        assert!((a - b).abs() < 1e-12, "level {level}: {a} vs {b}")
+                    }
+                    (None, None) => {}
+                    other => panic!("level {level}: {other:?}"),
+                }
+            });
         }
-    }
+    });
 }
 
 #[test]
