@@ -71,13 +71,11 @@ impl Fig4Params {
         }
     }
 
-    /// A reduced version for the tests, without the Dormand–Prince reference (nine tenths
-    /// of the scene's time): the book's run compares it, and its numbers are published
-    /// checks.
+    /// A reduced version for the tests.
     pub fn test() -> Self {
         Self {
             long_transient: 1500,
-            reference_rtol: None,
+            reference_rtol: Some(1e-10),
             random_starts: 3,
             ..Self::book()
         }
