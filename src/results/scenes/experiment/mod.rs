@@ -195,7 +195,8 @@ impl ExperimentParams {
     }
 
     /// A reduced version for the tests: N = 10 settles to the same (1,4) orbit with the
-    /// same taps to 0.01 ms, in a quarter of N = 20's time.
+    /// same taps to 0.01 ms, in a quarter of N = 20's time (the viscous variant, not
+    /// periodic at either N, has fewer contacts per period: at most 7–9, against 11–13).
     pub fn test() -> Self {
         Self {
             problem: problems::figure9(10, 0.0),
