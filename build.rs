@@ -299,15 +299,18 @@ fn main() {
     let top = run("git", &["rev-parse", "--show-toplevel"]).map(PathBuf::from);
     let same = |a: &PathBuf, b: &PathBuf| a.canonicalize().ok() == b.canonicalize().ok();
     let own_repository = matches!((&here, &top), (Some(h), Some(t)) if same(h, t));
-    let (commit, dirty) = if own_repository {
+    let (commit, dirty, committed) = if own_repository {
         let commit = run("git", &["rev-parse", "HEAD"]).unwrap_or_else(|| "unknown".into());
+        // the commit's time (seconds since the epoch): the date of the numbers committed with
+        // it, which a citation of them gives instead of the time it was asked for
+        let committed = run("git", &["show", "-s", "--format=%ct", "HEAD"]).unwrap_or_default();
         // dirty: tracked files changed (untracked ones, e.g. generated book pages, do not
         // count)
         let dirty = match run("git", &["status", "--porcelain", "--untracked-files=no"]) {
             Some(s) => (!s.is_empty()).to_string(),
             None => "unknown".into(),
         };
-        (commit, dirty)
+        (commit, dirty, committed)
     } else {
         // an unpacked archive: its commit, and no way to tell whether files were edited
         let recorded = std::fs::read_to_string("ARCHIVE_COMMIT")
@@ -317,12 +320,14 @@ fn main() {
         (
             recorded.unwrap_or_else(|| "unknown".into()),
             "unknown".into(),
+            String::new(),
         )
     };
     let rustc = std::env::var("RUSTC").unwrap_or_else(|_| "rustc".into());
     let toolchain = run(&rustc, &["--version"]).unwrap_or_else(|| "unknown".into());
     println!("cargo:rustc-env=CANTILEVER_GIT_COMMIT={commit}");
     println!("cargo:rustc-env=CANTILEVER_GIT_DIRTY={dirty}");
+    println!("cargo:rustc-env=CANTILEVER_GIT_COMMIT_TIME={committed}");
     println!("cargo:rustc-env=CANTILEVER_TOOLCHAIN={toolchain}");
     let out_dir = PathBuf::from(std::env::var("OUT_DIR").unwrap_or_else(|_| ".".into()));
     let _ = std::fs::write(out_dir.join("fingerprints.rs"), fingerprints(&toolchain));

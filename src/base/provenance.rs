@@ -52,6 +52,19 @@ impl Provenance {
         }
     }
 
+    /// The provenance of the published numbers of scene module `module` committed with this
+    /// build: dated by the commit ("unknown" for a build outside a repository), not by the
+    /// time they are read, so that reading them twice gives the same record.
+    pub fn of_published(module: &str) -> Self {
+        let date = env!("CANTILEVER_GIT_COMMIT_TIME")
+            .parse::<i64>()
+            .map_or_else(|_| "unknown".to_string(), utc_of);
+        Self {
+            date,
+            ..Self::of_scene(module, "book")
+        }
+    }
+
     /// The provenance of scene module `module`'s numbers computed now (with its
     /// fingerprint).
     pub fn of_scene(module: &str, resolution: &str) -> Self {
@@ -99,12 +112,18 @@ pub fn scene_fingerprint(module: &str) -> Option<&'static str> {
         .map(|(_, f)| *f)
 }
 
-/// The current UTC time as `YYYY-MM-DDThh:mm:ssZ` (days-to-civil, Hinnant's algorithm).
+/// The current UTC time as `YYYY-MM-DDThh:mm:ssZ`.
 pub fn utc_now() -> String {
     let secs = std::time::SystemTime::now()
         .duration_since(std::time::UNIX_EPOCH)
         .map(|d| d.as_secs() as i64)
         .unwrap_or(0);
+    utc_of(secs)
+}
+
+/// `secs` seconds after the Unix epoch as UTC `YYYY-MM-DDThh:mm:ssZ` (days-to-civil,
+/// Hinnant's algorithm).
+pub fn utc_of(secs: i64) -> String {
     let (days, rem) = (secs.div_euclid(86_400), secs.rem_euclid(86_400));
     let z = days + 719_468;
     let era = z.div_euclid(146_097);
@@ -130,5 +149,13 @@ mod tests {
         let d = super::utc_now();
         assert_eq!(d.len(), 20, "{d}");
         assert!(d.starts_with("20") && d.ends_with('Z'));
+    }
+
+    #[test]
+    fn known_instants_convert_to_their_calendar_dates() {
+        // `date -u -d @SECS +%FT%TZ`
+        assert_eq!(super::utc_of(0), "1970-01-01T00:00:00Z");
+        assert_eq!(super::utc_of(951_782_400), "2000-02-29T00:00:00Z");
+        assert_eq!(super::utc_of(1_796_083_199), "2026-11-30T23:59:59Z");
     }
 }

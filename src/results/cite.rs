@@ -71,7 +71,7 @@ impl Citation {
         Ok(Self {
             spec,
             params: readable(spec.params_json(Resolution::Book)),
-            provenance: Provenance::of_scene(spec.module(), "book"),
+            provenance: Provenance::of_published(spec.module()),
             verdict: None,
             recomputed: false,
             // the key found (a number asked for by its name is reproduced by its key)
