@@ -228,7 +228,15 @@ pub(crate) fn as_nobody(dir: &Path, args: &[&str]) -> Option<(i32, String)> {
     // a copy nobody can run (the build folder may not be reachable for it)
     let bin = dir.join("cantilever-copy");
     if !bin.exists() {
-        std::fs::copy(env!("CARGO_BIN_EXE_cantilever"), &bin).unwrap();
+        // copied by another process: a copy written by this one would leave its write
+        // handle, for a moment, in every child another test thread forks meanwhile, and
+        // running the copy then fails with "Text file busy" (it did once in CI)
+        let copied = std::process::Command::new("cp")
+            .arg(env!("CARGO_BIN_EXE_cantilever"))
+            .arg(&bin)
+            .status()
+            .unwrap();
+        assert!(copied.success());
         std::fs::set_permissions(&bin, std::fs::Permissions::from_mode(0o755)).unwrap();
         std::fs::set_permissions(dir, std::fs::Permissions::from_mode(0o755)).unwrap();
     }
