@@ -4,7 +4,7 @@
 //! cells, where the curve says); the curves do not depend on the thread count.
 
 use impacting_cantilever::analysis::atlas::curves::{
-    self, BoundaryCurve, BoundaryCurves, CurveSearch, EdgeClass,
+    self, Band, BoundaryCurve, BoundaryCurves, CurveSearch, EdgeClass, FailedSeed,
 };
 use impacting_cantilever::analysis::atlas::{
     self, cell::CellSearch, AtlasData, AtlasParams, Attractor, Cell, ModesRule, Row,
@@ -14,6 +14,7 @@ use impacting_cantilever::analysis::continuation::{
 };
 use impacting_cantilever::base::progress::Silent;
 use impacting_cantilever::engine::sim::Simulator;
+use impacting_cantilever::results::scenes::atlas::boundaries::{left, Left};
 use nalgebra::DVector;
 
 fn orbit(m: u64, n: usize) -> Attractor {
@@ -76,6 +77,7 @@ fn edges_and_crossings_on_a_hand_made_atlas() {
     // a straight curve at ω = 2.6 (grid column 1.6) over both rows
     let curve = BoundaryCurve {
         kind: "grazing".into(),
+        modes: 2,
         orbit: (1, 1),
         seed: ((0, 1), (0, 2)),
         points: vec![(2.6, 1.0), (2.6, 10.0)],
@@ -93,8 +95,10 @@ fn edges_and_crossings_on_a_hand_made_atlas() {
             max_points: 2,
             round: 1,
         },
-        rows: 2,
-        modes: 2,
+        bands: vec![Band {
+            rows: (0, 2),
+            modes: 2,
+        }],
         curves: vec![curve],
         failed: Vec::new(),
         duplicates: 0,
@@ -124,6 +128,122 @@ fn edges_and_crossings_on_a_hand_made_atlas() {
     let cells: Vec<_> = crossed.iter().map(|x| x.cells).collect();
     assert_eq!(cells, vec![((0, 1), (0, 2)), ((1, 1), (1, 2))]);
     assert!(crossed.iter().all(|x| x.rest_differs && x.stable_differs));
+}
+
+#[test]
+fn bands_of_one_n_and_why_each_edge_is_left_on_a_hand_made_atlas() {
+    // 3 k × 4 ω, N = 2 on rows 0 and 1, N = 3 on row 2; from rest ("-": no stable orbit;
+    // in row 0's last cell (1,2) is stable too):
+    //   row 0: (1,1) (1,2) (1,2) (2,2)
+    //   row 1: (1,1)  -   (1,2) (1,2)
+    //   row 2: (2,2)  -   (1,2) (3,3)
+    let params = AtlasParams {
+        modes: ModesRule::Fixed(2),
+        k_over_k1_range: (1.0, 100.0),
+        k_points: 3,
+        omega_range: (1.0, 2.5),
+        omega_points: 4,
+        ..AtlasParams::test()
+    };
+    let none = Cell {
+        from_rest: None,
+        ..cell(&[])
+    };
+    let row = |index, k, modes, cells| Row {
+        index,
+        k_over_k1: k,
+        modes,
+        cells,
+    };
+    let d = AtlasData {
+        omega_over_w1: vec![1.0, 1.5, 2.0, 2.5],
+        rows: vec![
+            row(
+                0,
+                1.0,
+                2,
+                vec![
+                    cell(&[(1, 1)]),
+                    cell(&[(1, 2)]),
+                    cell(&[(1, 2)]),
+                    cell(&[(2, 2), (1, 2)]),
+                ],
+            ),
+            row(
+                1,
+                10.0,
+                2,
+                vec![
+                    cell(&[(1, 1)]),
+                    none.clone(),
+                    cell(&[(1, 2)]),
+                    cell(&[(1, 2)]),
+                ],
+            ),
+            row(
+                2,
+                100.0,
+                3,
+                vec![cell(&[(2, 2)]), none, cell(&[(1, 2)]), cell(&[(3, 3)])],
+            ),
+        ],
+        params,
+        curves: None,
+    };
+    let bands = curves::bands(&d);
+    assert_eq!(
+        bands,
+        vec![
+            Band {
+                rows: (0, 2),
+                modes: 2
+            },
+            Band {
+                rows: (2, 3),
+                modes: 3
+            }
+        ]
+    );
+    // no curve; the seed of (1,1)|(1,2) in row 0 failed
+    let c = BoundaryCurves {
+        search: CurveSearch {
+            max_curves: 1,
+            max_seeds: 1,
+            max_points: 2,
+            round: 1,
+        },
+        bands,
+        curves: Vec::new(),
+        failed: vec![FailedSeed {
+            seed: ((0, 0), (0, 1)),
+            why: "none met".into(),
+        }],
+        duplicates: 0,
+    };
+    let edges = curves::edges(&d, &c);
+    assert_eq!(edges.len(), 11, "{edges:?}");
+    let changes: Vec<_> = edges
+        .iter()
+        .filter(|e| e.modes_change)
+        .map(|e| (e.a, e.b))
+        .collect();
+    assert_eq!(changes, vec![((1, 0), (2, 0)), ((1, 3), (2, 3))]);
+    let why = |a, b| {
+        let e = edges.iter().find(|e| e.a == a && e.b == b).unwrap();
+        left(&d, &c, e).unwrap()
+    };
+    assert_eq!(why((0, 0), (0, 1)), Left::SeedFailed);
+    assert_eq!(why((0, 2), (0, 3)), Left::Basin);
+    assert_eq!(why((0, 3), (1, 3)), Left::Basin);
+    assert_eq!(why((0, 1), (1, 1)), Left::NotPeriodic);
+    assert_eq!(why((1, 0), (2, 0)), Left::ModesChange);
+    assert_eq!(why((2, 2), (2, 3)), Left::NotSeeded);
+    let count = |r| edges.iter().filter(|e| left(&d, &c, e) == Some(r)).count();
+    assert_eq!(
+        Left::ALL.map(count),
+        [2, 2, 5, 1, 1],
+        "modes change, basin, not periodic, seed failed, not seeded"
+    );
 }
 
 /// A small atlas at N = 2 over the rectangle of the `boundaries` chapter, where the (1,1)

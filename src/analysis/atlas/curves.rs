@@ -1,7 +1,8 @@
 //! The atlas's boundaries by two-parameter continuation (beyond the paper): the curves of
 //! folds, period doublings, Neimark–Sacker points and grazings ([`crate::analysis::curves`])
-//! that bound the regions of the brute-force atlas, traced in (ω, k) over the rows that use
-//! the lowest rows' N, and how well they account for its region boundaries.
+//! that bound the regions of the brute-force atlas, traced in (ω, k) in each band of rows
+//! that share one N (each curve at its band's N, within its band's k), and how well they
+//! account for its region boundaries.
 //!
 //! **Boundaries.** Two neighbouring cells (along ω or along k) whose orbits from rest have
 //! different labels (m, n) — or where one has none — meet at a boundary *edge*. An edge is a
@@ -45,6 +46,9 @@ pub type Label = Option<(u64, usize)>;
 /// A cell (row, column).
 type At = (usize, usize);
 
+/// A band (its rows) and an unordered pair of labels.
+type BandPair = (Option<(usize, usize)>, (Label, Label));
+
 /// How the boundary curves are searched.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct CurveSearch {
@@ -78,6 +82,9 @@ pub struct Edge {
     pub b: (usize, usize),
     /// The labels of their orbits from rest.
     pub labels: (Label, Label),
+    /// The two rows use different N (an edge along k between two bands): its labels may
+    /// differ because N does.
+    pub modes_change: bool,
     /// Basin or bifurcation.
     pub class: EdgeClass,
     /// The nearest curve within one grid step of the edge's midpoint, and its distance in
@@ -102,6 +109,8 @@ pub struct CurveMeeting {
 pub struct BoundaryCurve {
     /// Fold, period doubling, Neimark–Sacker or grazing.
     pub kind: String,
+    /// N: the modes of its band's rows.
+    pub modes: usize,
     /// The continued orbit's label (m, n) at its seed.
     pub orbit: (u64, usize),
     /// The cell whose orbit from rest was continued, and the neighbour it was continued
@@ -127,15 +136,22 @@ pub struct FailedSeed {
     pub why: String,
 }
 
+/// A band of consecutive rows that use one N.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Band {
+    /// Its rows: `rows.0` to `rows.1` − 1.
+    pub rows: (usize, usize),
+    /// N.
+    pub modes: usize,
+}
+
 /// The curves of an atlas.
 #[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
 pub struct BoundaryCurves {
     /// The search's settings.
     pub search: CurveSearch,
-    /// The rows covered: 0 to `rows` − 1, all using N = `modes`.
-    pub rows: usize,
-    /// N.
-    pub modes: usize,
+    /// The bands of rows of one N, from the lowest k; each curve is traced within one.
+    pub bands: Vec<Band>,
     /// The curves, in the order they were accepted.
     pub curves: Vec<BoundaryCurve>,
     /// Seeds that gave none.
@@ -162,10 +178,24 @@ fn stable(c: &Cell) -> BTreeSet<(u64, usize)> {
         .collect()
 }
 
-/// The rows that use the N of row 0, from row 0 (the curves are traced at that N).
-pub fn covered_rows(d: &AtlasData) -> usize {
-    let n0 = d.rows.first().map(|r| r.modes);
-    d.rows.iter().take_while(|r| Some(r.modes) == n0).count()
+/// The bands of consecutive rows that use one N, from row 0.
+pub fn bands(d: &AtlasData) -> Vec<Band> {
+    let mut out: Vec<Band> = Vec::new();
+    for (i, r) in d.rows.iter().enumerate() {
+        match out.last_mut() {
+            Some(b) if b.modes == r.modes => b.rows.1 = i + 1,
+            _ => out.push(Band {
+                rows: (i, i + 1),
+                modes: r.modes,
+            }),
+        }
+    }
+    out
+}
+
+/// The band of row `i`.
+fn band_of(bands: &[Band], i: usize) -> Option<&Band> {
+    bands.iter().find(|b| (b.rows.0..b.rows.1).contains(&i))
 }
 
 /// Grid coordinates (column, row) of (ω, k): one unit is one grid step.
@@ -210,23 +240,9 @@ fn curve_distance(p: &AtlasParams, curve: &BoundaryCurve, c: (f64, f64)) -> f64 
     }
 }
 
-/// Whether `b` is `a` traced again (from another seed): the same kind and orbit, and most of
-/// its points within one grid step of `a` (two tracings of one curve differ by their steps).
-fn same_curve(p: &AtlasParams, a: &BoundaryCurve, b: &BoundaryCurve) -> bool {
-    if a.kind != b.kind || a.orbit != b.orbit || b.points.is_empty() {
-        return false;
-    }
-    let near = b
-        .points
-        .iter()
-        .filter(|&&q| curve_distance(p, a, grid(p, q)) <= 1.0)
-        .count();
-    2 * near >= b.points.len()
-}
-
-/// Every boundary edge of the covered rows, with the nearest curve within one step.
+/// Every boundary edge of the atlas, with the nearest curve within one step.
 pub fn edges(d: &AtlasData, c: &BoundaryCurves) -> Vec<Edge> {
-    let rows = c.rows.min(d.rows.len());
+    let rows = d.rows.len();
     let mut out = Vec::new();
     let cell = |(i, j): (usize, usize)| &d.rows[i].cells[j];
     for i in 0..rows {
@@ -258,6 +274,7 @@ pub fn edges(d: &AtlasData, c: &BoundaryCurves) -> Vec<Edge> {
                     a,
                     b,
                     labels: (la, lb),
+                    modes_change: d.rows[a.0].modes != d.rows[b.0].modes,
                     class: if basin {
                         EdgeClass::Basin
                     } else {
@@ -285,9 +302,9 @@ pub struct Crossing {
     pub stable_differs: bool,
 }
 
-/// Every grid edge (between two covered cells) each curve crosses, once per curve.
+/// Every grid edge (between two cells of the atlas) each curve crosses, once per curve.
 pub fn crossings(d: &AtlasData, c: &BoundaryCurves) -> Vec<Crossing> {
-    let rows = c.rows.min(d.rows.len());
+    let rows = d.rows.len();
     let mut out = Vec::new();
     for (n, curve) in c.curves.iter().enumerate() {
         let mut seen = BTreeSet::new();
@@ -341,6 +358,12 @@ pub fn crossings(d: &AtlasData, c: &BoundaryCurves) -> Vec<Crossing> {
     out
 }
 
+/// Whether a curve's end is a stall (its corrector failed, or the model's orbit left the
+/// curve's condition), not the map's edge, a closed loop or the cap on points.
+fn stalled(end: &str) -> bool {
+    end.starts_with("corrector") || end.starts_with("the model's orbit")
+}
+
 /// The curve kind a one-parameter bifurcation is followed as (none for a branch point).
 fn curve_kind(kind: BifurcationKind) -> Option<CurveKind> {
     match kind {
@@ -366,7 +389,7 @@ fn seed_failure(e: Error) -> Result<String, Error> {
 fn trace_seed(
     d: &AtlasData,
     c: &CurveSearch,
-    rows: usize,
+    band: Band,
     (from, to): ((usize, usize), (usize, usize)),
     progress: &dyn Progress,
 ) -> Result<Result<BoundaryCurve, String>, Error> {
@@ -416,7 +439,11 @@ fn trace_seed(
     };
     let start = &branch.points[bif.index];
     let family2 = Family2::forced(forced, Parameter::Frequency, Parameter::StopStiffness)?;
-    let k_range = (d.rows[0].k_over_k1, d.rows[rows - 1].k_over_k1);
+    // within the band: beyond it the rows use another N
+    let k_range = (
+        d.rows[band.rows.0].k_over_k1,
+        d.rows[band.rows.1 - 1].k_over_k1,
+    );
     let settings2 = CurveSettings {
         max_points: c.max_points,
         max_step: 0.2,
@@ -459,6 +486,7 @@ fn trace_seed(
         .collect();
     Ok(Ok(BoundaryCurve {
         kind: kind.to_string(),
+        modes: band.modes,
         orbit: label,
         seed: (from, to),
         points: curve.points.iter().map(|q| (q.p, q.q)).collect(),
@@ -469,8 +497,9 @@ fn trace_seed(
 }
 
 /// The seeds still open: bifurcation edges along ω not within one step of a curve nor within
-/// two steps of a failed seed of the same labels, the most frequent label pair first, then
-/// by row and column; each as (cell continued, neighbour).
+/// two steps of a failed seed of the same labels, in bands of at least two rows; the pair of
+/// labels with the most edges left in its band first, then by row and column; each as (cell
+/// continued, neighbour).
 fn open_seeds(d: &AtlasData, found: &BoundaryCurves) -> Vec<((usize, usize), (usize, usize))> {
     let all = edges(d, found);
     let pair = |e: &Edge| {
@@ -481,14 +510,19 @@ fn open_seeds(d: &AtlasData, found: &BoundaryCurves) -> Vec<((usize, usize), (us
             (b, a)
         }
     };
-    let mut frequency: BTreeMap<(Label, Label), usize> = BTreeMap::new();
-    for e in &all {
-        *frequency.entry(pair(e)).or_default() += 1;
+    // the edges still to account for, per pair of labels in one band: a curve is traced
+    // within its band, so it can account only for its band's edges
+    let band = |i: usize| band_of(&found.bands, i).map(|b| b.rows);
+    let mut frequency: BTreeMap<BandPair, usize> = BTreeMap::new();
+    for e in all.iter().filter(|e| e.curve.is_none() && !e.modes_change) {
+        *frequency.entry((band(e.a.0), pair(e))).or_default() += 1;
     }
     let cell = |(i, j): (usize, usize)| &d.rows[i].cells[j];
     let mut open: Vec<(usize, At, At)> = all
         .iter()
         .filter(|e| e.class == EdgeClass::Bifurcation && e.curve.is_none() && e.a.0 == e.b.0)
+        // a curve is continued in k within its band: a band of one row has no k to follow
+        .filter(|e| band_of(&found.bands, e.a.0).is_some_and(|b| b.rows.1 - b.rows.0 >= 2))
         .filter_map(|e| {
             let (la, lb) = e.labels;
             // continue an orbit that is not stable on the other side
@@ -504,15 +538,15 @@ fn open_seeds(d: &AtlasData, found: &BoundaryCurves) -> Vec<((usize, usize), (us
                 (label(cell(fa)), label(cell(fb))) == (label(cell(seed.0)), label(cell(seed.1)))
                     && (fa.0 as f64 - seed.0 .0 as f64).hypot(fa.1 as f64 - seed.0 .1 as f64) <= 2.0
             });
-            (!near_failure).then(|| (frequency[&pair(e)], seed.0, seed.1))
+            (!near_failure).then(|| (frequency[&(band(e.a.0), pair(e))], seed.0, seed.1))
         })
         .collect();
     open.sort_by(|x, y| y.0.cmp(&x.0).then(x.1.cmp(&y.1)).then(x.2.cmp(&y.2)));
     open.into_iter().map(|(_, a, b)| (a, b)).collect()
 }
 
-/// Traces the boundary curves of an atlas (see the module's doc) at the N of its first
-/// rows, over those rows.
+/// Traces the boundary curves of an atlas (see the module's doc), each at the N of its
+/// seed's band of rows, within that band.
 ///
 /// # Errors
 /// [`Error::Interrupted`] when cancelled; [`Error::Invariant`] from a run; a parameter error
@@ -522,16 +556,14 @@ pub fn trace(
     search: &CurveSearch,
     progress: &dyn Progress,
 ) -> Result<BoundaryCurves, Error> {
-    let rows = covered_rows(d);
     let mut found = BoundaryCurves {
         search: *search,
-        rows,
-        modes: d.rows.first().map_or(0, |r| r.modes),
+        bands: bands(d),
         curves: Vec::new(),
         failed: Vec::new(),
         duplicates: 0,
     };
-    if rows < 2 || search.max_curves == 0 {
+    if search.max_curves == 0 {
         return Ok(found);
     }
     let task = progress.task("atlas: boundary curves", search.max_seeds as u64);
@@ -541,15 +573,16 @@ pub fn trace(
         if open.is_empty() {
             break;
         }
-        // a round: the next seeds, one per pair of labels (a curve explains many edges of
-        // its pair; the next round sees which are left)
+        // a round: the next seeds, one per pair of labels and band (a curve explains many
+        // edges of its pair; the next round sees which are left)
         let mut round: Vec<((usize, usize), (usize, usize))> = Vec::new();
         let labels = |x: &((usize, usize), (usize, usize))| {
             let (a, b) = (label(cell(d, x.0)), label(cell(d, x.1)));
+            let band = band_of(&found.bands, x.0 .0).map(|b| b.rows);
             if a <= b {
-                (a, b)
+                (band, a, b)
             } else {
-                (b, a)
+                (band, b, a)
             }
         };
         for s in open {
@@ -562,7 +595,10 @@ pub fn trace(
         }
         let results: Vec<Result<Result<BoundaryCurve, String>, Error>> = round
             .par_iter()
-            .map(|&s| trace_seed(d, search, rows, s, progress))
+            .map(|&s| match band_of(&found.bands, s.0 .0) {
+                Some(&band) => trace_seed(d, search, band, s, progress),
+                None => Err(Error::Invariant(format!("seed row {} in no band", s.0 .0))),
+            })
             .collect();
         for (s, r) in round.iter().zip(results) {
             tried += 1;
@@ -571,18 +607,41 @@ pub fn trace(
                 Ok(curve) => {
                     // the located curve must pass between the seed's cells (Newton at the
                     // seed's k may converge to another point of the test function), and not
-                    // be one already traced (another seed on it)
+                    // be one already traced (another seed of the round on it: its edge is
+                    // then accounted for). A curve that overlaps one traced but also passes
+                    // by its own seed's edge, which that one does not, is kept: it goes
+                    // further (a seed whose edge stays open is otherwise tried again).
                     let mid = ((s.0 .1 + s.1 .1) as f64 / 2.0, s.0 .0 as f64);
-                    let duplicate = found.curves.iter().any(|cv| {
-                        curve_distance(&d.params, cv, mid) <= 1.0
-                            || same_curve(&d.params, cv, &curve)
-                    });
+                    let duplicate = found
+                        .curves
+                        .iter()
+                        .any(|cv| curve_distance(&d.params, cv, mid) <= 1.0);
+                    // a curve that stalls both ways within its first grid step
+                    // accounts for no more than its seed: no curve, and no use of the
+                    // curve budget
+                    let first = curve.points.first().map(|&q| grid(&d.params, q));
+                    let extent = curve
+                        .points
+                        .iter()
+                        .map(|&q| {
+                            let (g, f) = (grid(&d.params, q), first.unwrap_or((0.0, 0.0)));
+                            (g.0 - f.0).hypot(g.1 - f.1)
+                        })
+                        .fold(0.0, f64::max);
                     if curve_distance(&d.params, &curve, mid) > 1.0 {
                         found.failed.push(FailedSeed {
                             seed: *s,
                             why: format!(
                                 "the {} curve located from it does not pass between its cells",
                                 curve.kind
+                            ),
+                        });
+                    } else if extent < 1.0 && stalled(&curve.ends.0) && stalled(&curve.ends.1) {
+                        found.failed.push(FailedSeed {
+                            seed: *s,
+                            why: format!(
+                                "the {} curve stalls within one grid step of its start ({})",
+                                curve.kind, curve.ends.0
                             ),
                         });
                     } else if duplicate || found.curves.len() >= search.max_curves {

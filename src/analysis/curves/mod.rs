@@ -150,6 +150,14 @@ const MAX_LOCATE: usize = 30;
 /// moves the orbit by about this much, and the test quantity with it.
 const TOLERANCE: f64 = 1e-11;
 
+/// The largest test residual of a polished point: a point whose orbit, converged by
+/// shooting with the model's own contacts, misses the curve's condition by more is not on
+/// the curve (the extended system, with its contacts held, followed an orbit the model
+/// does not have: it passes through the stop, or lost a contact). A fold's multiplier
+/// lies up to ~1e-5 from 1 when its condition is met to round-off (square-root
+/// sensitivity); every other condition is met to ~1e-11.
+const POLISHED_TEST_LIMIT: f64 = 1e-4;
+
 fn validate(settings: &CurveSettings, p0: f64, q0: f64) -> Result<(), Error> {
     let bad = |what: &str| -> Result<(), Error> {
         Err(ParameterError::new("curve settings", "these", what).into())
@@ -235,7 +243,8 @@ impl Tracer<'_, '_, '_> {
         Ok(None)
     }
 
-    /// The point at z polished by shooting at its (p, q); None if shooting fails there.
+    /// The point at z polished by shooting at its (p, q); None if shooting fails there or
+    /// the polished orbit misses the condition by more than [`POLISHED_TEST_LIMIT`].
     fn polish(&self, z: &DVector<f64>) -> Result<Option<CurvePoint>, Error> {
         let n = self.n(z);
         let (p, q) = (z[n].exp(), z[n + 1].exp());
@@ -274,6 +283,9 @@ impl Tracer<'_, '_, '_> {
                     / sim.model().free_tip_amplitude().0
             }
         };
+        if test_residual.is_nan() || test_residual > POLISHED_TEST_LIMIT {
+            return Ok(None);
+        }
         Ok(Some(CurvePoint {
             p,
             q,
@@ -310,10 +322,14 @@ impl Tracer<'_, '_, '_> {
             }
             let pred = &z + &t * h;
             let corrected = self.correct(&pred, &t, &borders, 2.0 * h)?;
+            // why a step fails: the corrector, or the point's polished orbit
+            let mut off_condition = false;
             let accepted = match corrected {
                 Some((zn, lin, its)) => match tangent(&lin.jacobian, &t) {
                     Some(tn) if tn.dot(&t) >= 0.95 || h <= s.min_step => {
-                        self.polish(&zn)?.map(|pt| (zn, lin, its, tn, pt))
+                        let polished = self.polish(&zn)?;
+                        off_condition = polished.is_none();
+                        polished.map(|pt| (zn, lin, its, tn, pt))
                     }
                     _ => None,
                 },
@@ -337,8 +353,13 @@ impl Tracer<'_, '_, '_> {
                     h *= 0.5;
                     if h < s.min_step {
                         let n = self.n(&z);
+                        let what = if off_condition {
+                            "the model's orbit leaves the curve's condition"
+                        } else {
+                            "corrector failed"
+                        };
                         break format!(
-                            "corrector failed at (p, q) = ({:.6}, {:.6}) with steps below {:.0e}",
+                            "{what} at (p, q) = ({:.6}, {:.6}) with steps below {:.0e}",
                             z[n].exp(),
                             z[n + 1].exp(),
                             s.min_step
@@ -384,7 +405,9 @@ pub fn trace_curve(
         settings,
     };
     let first = tracer.polish(&z0)?.ok_or_else(|| Error::NotConverged {
-        message: "the first point of the curve could not be polished".into(),
+        message: "the first point of the curve could not be polished (shooting failed, or the \
+                  model's orbit misses the curve's condition there)"
+            .into(),
         residual: None,
     })?;
     // the two directions are independent: traced in parallel (each is deterministic, so

@@ -39,6 +39,92 @@ pub fn unaccounted(edges: &[Edge]) -> Vec<(String, usize, usize)> {
     v
 }
 
+/// Why an edge no curve accounts for is left, in the order the reasons are tried (each edge
+/// is counted once, for the first that applies).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Left {
+    /// Its two rows use different N: the labels may differ because N does.
+    ModesChange,
+    /// Rest changes basin between coexisting orbits: no local bifurcation of either.
+    Basin,
+    /// One side has no stable orbit of period ≤ max_m: the edge of a quasi-periodic or
+    /// chaotic region, or of a window of longer periods.
+    NotPeriodic,
+    /// A seed of its pair of labels in its band was tried and gave no curve.
+    SeedFailed,
+    /// Its pair of labels in its band was not reached within the seeds tried.
+    NotSeeded,
+}
+
+impl Left {
+    /// Every reason, in order.
+    pub const ALL: [Left; 5] = [
+        Left::ModesChange,
+        Left::Basin,
+        Left::NotPeriodic,
+        Left::SeedFailed,
+        Left::NotSeeded,
+    ];
+
+    /// Its key's name.
+    pub fn key(self) -> &'static str {
+        match self {
+            Left::ModesChange => "between rows of different N",
+            Left::Basin => "basin edges",
+            Left::NotPeriodic => "next to a cell without a stable orbit",
+            Left::SeedFailed => "a seed of their pair gave no curve",
+            Left::NotSeeded => "their pair not seeded",
+        }
+    }
+}
+
+/// The reason an edge no curve accounts for is left (None for an accounted edge).
+pub fn left(d: &AtlasData, c: &BoundaryCurves, e: &Edge) -> Option<Left> {
+    if e.curve.is_some() {
+        return None;
+    }
+    let band = |i: usize| c.bands.iter().position(|b| (b.rows.0..b.rows.1).contains(&i));
+    let unordered = |(a, b): (Label, Label)| if a <= b { (a, b) } else { (b, a) };
+    let failed_here = || {
+        c.failed.iter().any(|f| {
+            let l = |(i, j): (usize, usize)| curves::label(&d.rows[i].cells[j]);
+            band(f.seed.0 .0) == band(e.a.0) && unordered((l(f.seed.0), l(f.seed.1))) == unordered(e.labels)
+        })
+    };
+    Some(if e.modes_change {
+        Left::ModesChange
+    } else if e.class == EdgeClass::Basin {
+        Left::Basin
+    } else if e.labels.0.is_none() || e.labels.1.is_none() {
+        Left::NotPeriodic
+    } else if failed_here() {
+        Left::SeedFailed
+    } else {
+        Left::NotSeeded
+    })
+}
+
+/// Why a seed gave no curve, in words common to many seeds (its reason without the numbers).
+pub fn failure_kind(why: &str) -> &'static str {
+    if why.contains("meets no bifurcation") {
+        "no bifurcation met between the two cells"
+    } else if why.contains("could not be polished") {
+        "the curve's first point could not be polished"
+    } else if why.contains("no fold point found") {
+        "no fold point near the one-parameter estimate"
+    } else if why.contains("converged to an orbit of period") {
+        "the orbit's least period halved on the curve"
+    } else if why.contains("Newton steps") {
+        "shooting did not converge at the curve's first point"
+    } else if why.contains("stalls within one grid step") {
+        "the curve stalls within a grid step of its start"
+    } else if why.contains("does not pass between its cells") {
+        "the curve located does not pass between the cells"
+    } else {
+        "other"
+    }
+}
+
 /// Digits a bracketed value supports: its leading digit and the first the half-width
 /// touches.
 fn digits(x: f64, half: f64) -> usize {
@@ -51,26 +137,40 @@ fn digits(x: f64, half: f64) -> usize {
 /// The key numbers of the curves.
 pub fn key_numbers(k: &mut KeyNumbers, d: &AtlasData, c: &BoundaryCurves) {
     let edges = curves::edges(d, c);
-    let covered = c.rows.min(d.rows.len());
-    if covered == 0 {
+    if d.rows.is_empty() {
         return;
     }
-    let mut kinds: BTreeMap<&str, usize> = BTreeMap::new();
-    for cv in &c.curves {
-        *kinds.entry(cv.kind.as_str()).or_default() += 1;
-    }
-    let kinds: Vec<String> = kinds.iter().map(|(kind, n)| format!("{n} {kind}")).collect();
     k.integer("boundary curves", c.curves.len() as i64);
+    let bands: Vec<String> = c
+        .bands
+        .iter()
+        .map(|b| {
+            let mut kinds: BTreeMap<&str, usize> = BTreeMap::new();
+            for cv in c.curves.iter().filter(|cv| {
+                let row = cv.seed.0 .0;
+                (b.rows.0..b.rows.1).contains(&row)
+            }) {
+                *kinds.entry(cv.kind.as_str()).or_default() += 1;
+            }
+            let kinds: Vec<String> = kinds.iter().map(|(kind, n)| format!("{n} {kind}")).collect();
+            format!(
+                "N = {} for k/k₁ from {} to {} (rows {} to {}): {}",
+                b.modes,
+                pretty(d.rows[b.rows.0].k_over_k1, 3),
+                pretty(d.rows[b.rows.1 - 1].k_over_k1, 3),
+                b.rows.0 + 1,
+                b.rows.1,
+                if kinds.is_empty() { "none".to_string() } else { kinds.join(", ") }
+            )
+        })
+        .collect();
     k.text(
         "boundary curves: where",
         format!(
-            "N = {}, k/k₁ from {} to {} (rows 1 to {covered}), ω/(β₁⁻)² from {} to {}; {}",
-            c.modes,
-            pretty(d.rows[0].k_over_k1, 3),
-            pretty(d.rows[covered - 1].k_over_k1, 3),
+            "{}; ω/(β₁⁻)² from {} to {}",
+            bands.join("; "),
             pretty(d.params.omega_range.0, 3),
             pretty(d.params.omega_range.1, 3),
-            if kinds.is_empty() { "none traced".to_string() } else { kinds.join(", ") }
         ),
     );
     k.text(
@@ -99,6 +199,28 @@ pub fn key_numbers(k: &mut KeyNumbers, d: &AtlasData, c: &BoundaryCurves) {
     k.text(
         "edges next to a cell without a stable orbit, within one step of a curve",
         near(&|e| e.labels.0.is_none() || e.labels.1.is_none()),
+    );
+    for reason in Left::ALL {
+        let n = edges.iter().filter(|e| left(d, c, e) == Some(reason)).count();
+        k.integer(format!("edges left: {}", reason.key()), n as i64);
+    }
+    let mut kinds: BTreeMap<&str, usize> = BTreeMap::new();
+    for f in &c.failed {
+        *kinds.entry(failure_kind(&f.why)).or_default() += 1;
+    }
+    let mut kinds: Vec<(&str, usize)> = kinds.into_iter().collect();
+    kinds.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(b.0)));
+    k.text(
+        "seeds without a curve, by reason",
+        if kinds.is_empty() {
+            "none".to_string()
+        } else {
+            kinds
+                .iter()
+                .map(|(why, n)| format!("{why} ({n})"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        },
     );
     let left = unaccounted(&edges);
     k.text(
@@ -177,6 +299,8 @@ pub fn table(d: &AtlasData, c: &BoundaryCurves) -> String {
                     "closed"
                 } else if e.starts_with("corrector") {
                     "stalled"
+                } else if e.starts_with("the model's orbit") {
+                    "off its condition"
                 } else {
                     "point cap"
                 }
