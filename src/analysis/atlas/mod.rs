@@ -35,6 +35,7 @@
 pub mod basins;
 pub mod cell;
 pub mod curves;
+pub mod edges;
 mod row;
 mod shard;
 
