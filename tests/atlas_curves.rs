@@ -4,7 +4,7 @@
 //! cells, where the curve says); the curves do not depend on the thread count.
 
 use impacting_cantilever::analysis::atlas::curves::{
-    self, Band, BoundaryCurve, BoundaryCurves, CurveSearch, EdgeClass, FailedSeed,
+    self, left, Band, BoundaryCurve, BoundaryCurves, CurveSearch, EdgeClass, FailedSeed, Left,
 };
 use impacting_cantilever::analysis::atlas::{
     self, cell::CellSearch, AtlasData, AtlasParams, Attractor, Cell, ModesRule, Row,
@@ -14,7 +14,6 @@ use impacting_cantilever::analysis::continuation::{
 };
 use impacting_cantilever::base::progress::Silent;
 use impacting_cantilever::engine::sim::Simulator;
-use impacting_cantilever::results::scenes::atlas::boundaries::{left, Left};
 use nalgebra::DVector;
 
 fn orbit(m: u64, n: usize) -> Attractor {

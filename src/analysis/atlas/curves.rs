@@ -38,7 +38,7 @@ use crate::error::Error;
 use nalgebra::DVector;
 use rayon::prelude::*;
 
-pub use super::edges::{crossings, edges, Crossing};
+pub use super::edges::{crossings, edges, left, Crossing, Left};
 use super::edges::{curve_distance, grid};
 use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, BTreeSet};

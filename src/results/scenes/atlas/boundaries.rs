@@ -2,7 +2,7 @@
 //! regions they account for, which are left, their codimension-two points) and their table.
 
 use super::label;
-use crate::analysis::atlas::curves::{self, BoundaryCurves, Edge, EdgeClass, Label};
+use crate::analysis::atlas::curves::{self, left, BoundaryCurves, Edge, EdgeClass, Label, Left};
 use crate::analysis::atlas::AtlasData;
 use crate::base::report::{pretty, KeyNumbers, Uncertainty};
 use crate::results::render::markdown_table;
@@ -37,71 +37,6 @@ pub fn unaccounted(edges: &[Edge]) -> Vec<(String, usize, usize)> {
     let mut v: Vec<(String, usize, usize)> = by.into_iter().map(|(k, (n, b))| (k, n, b)).collect();
     v.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
     v
-}
-
-/// Why an edge no curve accounts for is left, in the order the reasons are tried (each edge
-/// is counted once, for the first that applies).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
-pub enum Left {
-    /// Its two rows use different N: the labels may differ because N does.
-    ModesChange,
-    /// Rest changes basin between coexisting orbits: no local bifurcation of either.
-    Basin,
-    /// One side has no stable orbit of period ≤ max_m: the edge of a quasi-periodic or
-    /// chaotic region, or of a window of longer periods.
-    NotPeriodic,
-    /// A seed of its pair of labels in its band was tried and gave no curve.
-    SeedFailed,
-    /// Its pair of labels in its band was not reached within the seeds tried.
-    NotSeeded,
-}
-
-impl Left {
-    /// Every reason, in order.
-    pub const ALL: [Left; 5] = [
-        Left::ModesChange,
-        Left::Basin,
-        Left::NotPeriodic,
-        Left::SeedFailed,
-        Left::NotSeeded,
-    ];
-
-    /// Its key's name.
-    pub fn key(self) -> &'static str {
-        match self {
-            Left::ModesChange => "between rows of different N",
-            Left::Basin => "basin edges",
-            Left::NotPeriodic => "next to a cell without a stable orbit",
-            Left::SeedFailed => "a seed of their pair gave no curve",
-            Left::NotSeeded => "their pair not seeded",
-        }
-    }
-}
-
-/// The reason an edge no curve accounts for is left (None for an accounted edge).
-pub fn left(d: &AtlasData, c: &BoundaryCurves, e: &Edge) -> Option<Left> {
-    if e.curve.is_some() {
-        return None;
-    }
-    let band = |i: usize| c.bands.iter().position(|b| (b.rows.0..b.rows.1).contains(&i));
-    let unordered = |(a, b): (Label, Label)| if a <= b { (a, b) } else { (b, a) };
-    let failed_here = || {
-        c.failed.iter().any(|f| {
-            let l = |(i, j): (usize, usize)| curves::label(&d.rows[i].cells[j]);
-            band(f.seed.0 .0) == band(e.a.0) && unordered((l(f.seed.0), l(f.seed.1))) == unordered(e.labels)
-        })
-    };
-    Some(if e.modes_change {
-        Left::ModesChange
-    } else if e.class == EdgeClass::Basin {
-        Left::Basin
-    } else if e.labels.0.is_none() || e.labels.1.is_none() {
-        Left::NotPeriodic
-    } else if failed_here() {
-        Left::SeedFailed
-    } else {
-        Left::NotSeeded
-    })
 }
 
 /// Why a seed gave no curve, in words common to many seeds (its reason without the numbers).
