@@ -113,20 +113,66 @@ pub(crate) fn project_function(
     f: &dyn Fn(f64) -> f64,
     n: usize,
 ) -> Result<DVector<f64>, ParameterError> {
+    let rule = weighted_modes(n)?;
+    let fs: Vec<f64> = rule.nodes.iter().map(|&s| f(s)).collect();
+    Ok(DVector::from_iterator(
+        n,
+        rule.weighted
+            .iter()
+            .map(|row| row.iter().zip(&fs).map(|(&wm, &fv)| wm * fv).sum::<f64>()),
+    ))
+}
+
+/// The quadrature of the first n modes: its nodes s_i and, per mode, w_i·φ_j(s_i).
+struct WeightedModes {
+    nodes: Vec<f64>,
+    weighted: Vec<Vec<f64>>,
+}
+
+/// The quadrature of the first n modes, built once per n: a model is built at every point of
+/// a continuation or a curve (three per Newton step of a curve), and evaluating the mode
+/// shapes at the nodes was a sixth of an atlas's curve tracing. The values are those a
+/// fresh build gives, bit for bit. The last few n up to 64 are kept (at most 64 × 1280
+/// values each); a larger N is built afresh (a 400-mode table holds 3.2 × 10⁶ values, and a
+/// sweep over N meets each N once).
+fn weighted_modes(n: usize) -> Result<Arc<WeightedModes>, ParameterError> {
+    use std::sync::Mutex;
+    static KEPT: Mutex<Vec<(usize, Arc<WeightedModes>)>> = Mutex::new(Vec::new());
+    const KEEP: usize = 4;
+    const LARGEST_KEPT: usize = 64;
+    if let Some(hit) = KEPT
+        .lock()
+        .ok()
+        .and_then(|kept| kept.iter().find(|(m, _)| *m == n).map(|(_, t)| t.clone()))
+    {
+        return Ok(hit);
+    }
     let modes: Vec<_> = (1..=n)
         .map(continuum::free_mode)
         .collect::<Result<_, _>>()?;
     let quad = Quadrature::for_wavenumber(modes[n - 1].beta);
-    let fs: Vec<f64> = quad.nodes.iter().map(|&s| f(s)).collect();
-    Ok(DVector::from_iterator(
-        n,
-        modes.iter().map(|m| {
+    let weighted = modes
+        .iter()
+        .map(|m| {
             quad.nodes
                 .iter()
                 .zip(&quad.weights)
-                .zip(&fs)
-                .map(|((&s, &w), &fv)| w * m.value(s) * fv)
-                .sum::<f64>()
-        }),
-    ))
+                .map(|(&s, &w)| w * m.value(s))
+                .collect()
+        })
+        .collect();
+    let table = Arc::new(WeightedModes {
+        nodes: quad.nodes,
+        weighted,
+    });
+    if n > LARGEST_KEPT {
+        return Ok(table);
+    }
+    if let Ok(mut kept) = KEPT.lock() {
+        if kept.len() >= KEEP {
+            kept.remove(0);
+        }
+        kept.push((n, table.clone()));
+    }
+    Ok(table)
 }

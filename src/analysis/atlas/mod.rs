@@ -157,11 +157,12 @@ impl AtlasParams {
             check_extra_modes: 10,
             check_stride: 16,
             check_starts: 16,
-            // 20 curves over the map's three bands of N take about 25 s on two cores (and
-            // account for about 30 % of its boundary edges; 30 would take 55 s for 41 %)
+            // 30 curves over the map's three bands of N take about 18 s on two cores and
+            // account for 40 % of its boundary edges (measured 2026-11-30: 20 take 9 s for
+            // 28 %, 40 take 35 s for 49 %)
             curves: curves::CurveSearch {
-                max_curves: 20,
-                max_seeds: 40,
+                max_curves: 30,
+                max_seeds: 60,
                 max_points: 120,
                 round: 4,
             },

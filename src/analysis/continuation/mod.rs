@@ -36,7 +36,7 @@ mod switching;
 
 pub use detect::{Bifurcation, BifurcationKind};
 pub use request::{continue_from, Continuation, ContinueOptions};
-pub use shape::{OrbitShape, ShapeObserver, TipAt};
+pub use shape::{OrbitShape, ShapeObserver, TipAt, TipRowAt};
 pub use switching::trace;
 
 use crate::analysis::orbit::relative_residual;

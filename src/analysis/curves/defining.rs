@@ -4,11 +4,14 @@
 //! - **fold**: M − I singular (a multiplier at +1);
 //! - **period doubling**: M + I singular (a multiplier at −1);
 //! - **grazing**: the interior extremum of the tip displacement nearest the stop touches it,
-//!   s = (d_ext − d₀)/A_free ([`crate::analysis::continuation::shape`]);
+//!   s = (d_ext − d₀)/A_free ([`crate::analysis::continuation::shape`]). Its gradient in
+//!   the state is the tip's row of the run's Jacobian at the extremum's time t* (exact, one
+//!   run: ḋ(t*) = 0, so the extremum's time does not enter); in p and q forward differences
+//!   of the tip at t* (no new search for the extremum, for the same reason);
 //! - **Neimark–Sacker**: a complex pair of multipliers on the unit circle, s = |μ| − 1 of the
 //!   complex multiplier (Im μ > 0) followed from the previous point (the one nearest it).
-//!   Its gradient is by forward differences in every state coordinate (n extra monodromies,
-//!   as the grazing test's n extra runs): simpler than the pair's eigenvectors, and the
+//!   Its gradient is by forward differences in every state coordinate (n extra
+//!   monodromies): simpler than the pair's eigenvectors, and the
 //!   point Newton converges to is the same, since s itself is exact. A real pair
 //!   (Im μ = 0: a 1:1 or 1:2 resonance) ends the curve with an error naming it.
 //!
@@ -32,7 +35,7 @@
 
 use super::{CurveKind, Family2, Member};
 use crate::analysis::continuation::Scaled;
-use crate::analysis::continuation::{ShapeObserver, TipAt};
+use crate::analysis::continuation::{ShapeObserver, TipAt, TipRowAt};
 use crate::analysis::orbit::relative_residual;
 use crate::analysis::shooting::map_with_jacobian;
 use crate::error::Error;
@@ -211,13 +214,25 @@ fn grazing_test(member: &Member, x: &DVector<f64>, m: u64) -> Result<(f64, f64),
     }
 }
 
-/// (d(t) − d₀)/A_free on the period-m run of `member` from x.
-fn tip_at(member: &Member, x: &DVector<f64>, m: u64, t: f64) -> Result<f64, Error> {
+/// The end state of the period-m run of `member` from x, and (d(t) − d₀)/A_free on it.
+fn tip_at(member: &Member, x: &DVector<f64>, m: u64, t: f64) -> Result<(DVector<f64>, f64), Error> {
     let sim = member.simulator()?;
     let mut obs = TipAt::new(sim, t);
+    let end = sim.run(x, m, &mut obs)?;
+    let scale = sim.model().free_tip_amplitude().0;
+    let d = obs.finish().ok_or_else(|| {
+        Error::Invariant(format!("a period-{m} run did not reach t = {t} inside it"))
+    })?;
+    Ok((end.state, d / scale))
+}
+
+/// ∂((d(t) − d₀)/A_free)/∂x on the period-m run of `member` from x.
+fn tip_row_at(member: &Member, x: &DVector<f64>, m: u64, t: f64) -> Result<DVector<f64>, Error> {
+    let sim = member.simulator()?;
+    let mut obs = TipRowAt::new(t);
     sim.run(x, m, &mut obs)?;
     let scale = sim.model().free_tip_amplitude().0;
-    obs.finish().map(|d| d / scale).ok_or_else(|| {
+    obs.finish().map(|r| r / scale).ok_or_else(|| {
         Error::Invariant(format!("a period-{m} run did not reach t = {t} inside it"))
     })
 }
@@ -309,18 +324,19 @@ impl System<'_, '_> {
             CurveKind::Grazing => {
                 let (s, at) = grazing_test(&member, &x, self.m)?;
                 f[n] = s;
-                // the state columns from the tip at the extremum's time (its derivative is
-                // the extremum's: ḋ = 0 there), without searching each run for extrema
+                // the state columns: the tip's row of the run's Jacobian at the extremum's
+                // time (the extremum's derivative, as ḋ = 0 there), from one run
+                let row = tip_row_at(&member, &x, self.m, at)?;
                 for j in 0..n {
-                    let mut xj = x.clone();
-                    xj[j] += H * s_scale[j];
-                    jacobian[(n, j)] = (tip_at(&member, &xj, self.m, at)? - s) / H;
+                    jacobian[(n, j)] = row[j] * s_scale[j];
                 }
+                // the parameter columns from one run each: its end state, and its tip at
+                // t* (again the extremum's derivative, without a search for the extremum)
                 for (col, sim_h) in shifted.iter().enumerate() {
-                    let px_h = sim_h.map().advance(&x, 0, self.m, false)?.state;
+                    let (px_h, s_h) = tip_at(sim_h, &x, self.m, at)?;
                     let dg = (&px_h - &px).component_div(s_scale) / H;
                     jacobian.view_mut((0, n + col), (n, 1)).copy_from(&dg);
-                    jacobian[(n, n + col)] = (grazing_test(sim_h, &x, self.m)?.0 - s) / H;
+                    jacobian[(n, n + col)] = (s_h - s) / H;
                 }
             }
         }
