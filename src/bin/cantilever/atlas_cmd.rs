@@ -43,7 +43,7 @@ pub struct AtlasArgs {
     #[arg(long, allow_hyphen_values = true)]
     pub modes_tolerance: Option<f64>,
     /// Boundary curves traced by two-parameter continuation, each at the N of its band of
-    /// rows, 0 to 256 (0: none; default 20, the book's; twice as many seeds are tried).
+    /// rows, 0 to 256 (0: none; default 30, the book's; twice as many seeds are tried).
     /// Traced by `atlas-merge` (or here when the shard is 0/1): a shard holds rows only.
     #[arg(long)]
     pub curves: Option<usize>,
