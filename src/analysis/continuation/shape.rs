@@ -240,13 +240,10 @@ mod tests {
     #[test]
     fn the_tip_row_is_the_derivative_of_the_tip_at_a_fixed_time() {
         for (modes, k) in [(3, 100.0), (10, 1000.0)] {
+            // Figure 4's model at another stop stiffness
             let forced = crate::model::problems::Forced {
-                modes,
                 k_over_k1: k,
-                zeta1: 0.01,
-                omega_over_w1: 2.0,
-                gap: 0.0,
-                printed_eq37_amplitude: false,
+                ..crate::model::problems::figure4(modes)
             };
             let sim = Simulator::new(forced.model().unwrap()).unwrap();
             let x0 = DVector::from_fn(2 * modes, |i, _| 0.3 / (1.0 + i as f64).powi(2));
