@@ -169,10 +169,49 @@ fn weighted_modes(n: usize) -> Result<Arc<WeightedModes>, ParameterError> {
         return Ok(table);
     }
     if let Ok(mut kept) = KEPT.lock() {
-        if kept.len() >= KEEP {
-            kept.remove(0);
+        // (another thread may have built the same n meanwhile: kept once)
+        if !kept.iter().any(|(m, _)| *m == n) {
+            if kept.len() >= KEEP {
+                kept.remove(0);
+            }
+            kept.push((n, table.clone()));
         }
-        kept.push((n, table.clone()));
     }
     Ok(table)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{continuum, project_function, Quadrature};
+
+    /// The kept quadrature gives the projection a fresh one gives, bit for bit: on the first
+    /// call for an N, on a later one, and for an N too large to be kept.
+    #[test]
+    fn a_kept_quadrature_projects_as_a_fresh_one() {
+        let f = |s: f64| (3.0 * s).sin() + s * s;
+        for n in [1, 7, 20, 65] {
+            let modes: Vec<_> = (1..=n).map(|j| continuum::free_mode(j).unwrap()).collect();
+            let quad = Quadrature::for_wavenumber(modes[n - 1].beta);
+            let fresh: Vec<f64> = modes
+                .iter()
+                .map(|m| {
+                    quad.nodes
+                        .iter()
+                        .zip(&quad.weights)
+                        .map(|(&s, &w)| w * m.value(s) * f(s))
+                        .sum::<f64>()
+                })
+                .collect();
+            for _ in 0..2 {
+                let projected = project_function(&f, n).unwrap();
+                assert!(
+                    projected
+                        .iter()
+                        .zip(&fresh)
+                        .all(|(a, b)| a.to_bits() == b.to_bits()),
+                    "N = {n}"
+                );
+            }
+        }
+    }
 }
