@@ -43,6 +43,7 @@ fn sharded_atlas_is_identical_to_unsharded_for_any_thread_count() {
             max_seeds: 2,
             max_points: 6,
             round: 1,
+            edge_sample: 0,
         },
         ..small()
     };

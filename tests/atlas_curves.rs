@@ -1,7 +1,9 @@
 //! The atlas's boundary curves: the edge and crossing geometry on a hand-made atlas (exact);
 //! on a small atlas, each curve checked where it crosses a row by a one-parameter run in ω
 //! of the orbit on the curve's side (it meets the same kind of bifurcation between the two
-//! cells, where the curve says); the curves do not depend on the thread count.
+//! cells, where the curve says); the curves do not depend on the thread count; each edge
+//! checked across is one the curves leave, and what its check meets lies between its cells,
+//! where a full run across the edge finds it too.
 
 use impacting_cantilever::analysis::atlas::curves::{
     self, left, Band, BoundaryCurve, BoundaryCurves, CurveSearch, EdgeClass, FailedSeed, Left,
@@ -93,6 +95,7 @@ fn edges_and_crossings_on_a_hand_made_atlas() {
             max_seeds: 1,
             max_points: 2,
             round: 1,
+            edge_sample: 0,
         },
         bands: vec![Band {
             rows: (0, 2),
@@ -101,6 +104,7 @@ fn edges_and_crossings_on_a_hand_made_atlas() {
         curves: vec![curve],
         failed: Vec::new(),
         duplicates: 0,
+        checked: Vec::new(),
     };
     let edges = curves::edges(&d, &c);
     let find = |a, b| edges.iter().find(|e| e.a == a && e.b == b).unwrap();
@@ -210,6 +214,7 @@ fn bands_of_one_n_and_why_each_edge_is_left_on_a_hand_made_atlas() {
             max_seeds: 1,
             max_points: 2,
             round: 1,
+            edge_sample: 0,
         },
         bands,
         curves: Vec::new(),
@@ -218,6 +223,7 @@ fn bands_of_one_n_and_why_each_edge_is_left_on_a_hand_made_atlas() {
             why: "none met".into(),
         }],
         duplicates: 0,
+        checked: Vec::new(),
     };
     let edges = curves::edges(&d, &c);
     assert_eq!(edges.len(), 11, "{edges:?}");
@@ -262,6 +268,7 @@ fn small() -> AtlasParams {
             max_seeds: 6,
             max_points: 40,
             round: 2,
+            edge_sample: 4,
         },
         ..AtlasParams::test()
     }
@@ -382,5 +389,107 @@ fn curves_do_not_depend_on_the_thread_count() {
         serde_json::to_string(&one.curves).unwrap(),
         serde_json::to_string(&two.curves).unwrap()
     );
-    assert!(!two.curves.unwrap().curves.is_empty());
+    let two = two.curves.unwrap();
+    assert!(!two.curves.is_empty());
+    assert_eq!(
+        two.checked.len(),
+        4,
+        "the edges checked across are compared too"
+    );
+}
+
+#[test]
+fn each_checked_edge_is_left_by_the_curves_and_meets_its_bifurcation_between_its_cells() {
+    let p = AtlasParams {
+        curves: CurveSearch {
+            max_curves: 1,
+            edge_sample: 6,
+            ..small().curves
+        },
+        ..small()
+    };
+    let d = atlas::compute(&p, &Silent).unwrap();
+    let c = d.curves.as_ref().unwrap();
+    let edges = curves::edges(&d, c);
+    let pool: Vec<_> = edges
+        .iter()
+        .filter(|e| {
+            matches!(
+                left(&d, c, e),
+                Some(Left::NotPeriodic | Left::SeedFailed | Left::NotSeeded)
+            )
+        })
+        .collect();
+    assert!(pool.len() > 6, "only {} edges to sample", pool.len());
+    assert_eq!(c.checked.len(), 6);
+    let mut located = 0;
+    for (n, x) in c.checked.iter().enumerate() {
+        let (from, to) = x.cells;
+        assert!(
+            c.checked[..n].iter().all(|y| y.cells != x.cells),
+            "{x:?} drawn twice"
+        );
+        let e = pool
+            .iter()
+            .find(|e| (e.a, e.b) == (from, to) || (e.a, e.b) == (to, from))
+            .unwrap_or_else(|| panic!("{x:?} is not an edge the curves leave"));
+        assert_eq!(x.left, left(&d, c, e).unwrap().key());
+        let cell = |(i, j): (usize, usize)| &d.rows[i].cells[j];
+        // the side continued: its orbit from rest is not stable on the other side
+        assert_eq!(x.orbit, curves::label(cell(from)), "{x:?}");
+        let orbit = x.orbit.unwrap();
+        assert!(
+            !cell(to)
+                .attractors
+                .iter()
+                .any(|a| (a.period_m, a.impacts_n) == orbit),
+            "{x:?}"
+        );
+        let Some((kind, at)) = &x.meets else { continue };
+        located += 1;
+        let (parameter, p0, p1) = if from.0 == to.0 {
+            let w = &d.omega_over_w1;
+            (Parameter::Frequency, w[from.1], w[to.1])
+        } else {
+            let k = |i: usize| d.rows[i].k_over_k1;
+            (Parameter::StopStiffness, k(from.0), k(to.0))
+        };
+        assert!(
+            (p0.min(p1)..=p0.max(p1)).contains(at),
+            "{x:?}: {at} not between {p0} and {p1}"
+        );
+        // a run of the whole edge, not stopped at its first bifurcation, finds it there
+        let forced = p
+            .model(2, d.rows[from.0].k_over_k1, d.omega_over_w1[from.1])
+            .unwrap();
+        let sim = Simulator::new(forced.model().unwrap()).unwrap();
+        let o = CellSearch::new(&p, &sim, from)
+            .from_start(0)
+            .unwrap()
+            .unwrap();
+        let range = (p0.min(p1), p0.max(p1));
+        let settings = Settings {
+            max_step: (range.1 / range.0).ln() / 4.0,
+            initial_step: (range.1 / range.0).ln() / 8.0,
+            ..Settings::new(range)
+        };
+        let branch = continuation::continue_branch(
+            &Family::forced(forced, parameter),
+            &DVector::from_vec(o.state),
+            p0,
+            o.period_m,
+            if p1 > p0 { 1.0 } else { -1.0 },
+            &settings,
+        )
+        .unwrap();
+        let first = branch.bifurcations.first().unwrap();
+        assert_eq!(first.kind.to_string(), *kind, "{x:?}");
+        // the same run up to its first bifurcation: the same point, to round-off
+        assert!(
+            (first.parameter - at).abs() <= 1e-12 * at,
+            "{x:?}: the whole run finds it at {}",
+            first.parameter
+        );
+    }
+    assert!(located >= 3, "only {located} of 6 located: {:?}", c.checked);
 }

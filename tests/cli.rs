@@ -535,3 +535,26 @@ fn simulate_without_the_energy_budget_gives_the_same_run_and_no_imbalance() {
         assert_eq!(a[field], b[field], "{field}");
     }
 }
+
+#[test]
+fn atlas_refuses_edge_checks_out_of_range_or_without_curves() {
+    for (args, message) in [
+        (
+            &["--edge-checks", "5000"][..],
+            "error: invalid --edge-checks: got 5000; allowed: 0 to 4096\n",
+        ),
+        (
+            &["--curves", "0", "--edge-checks", "5"][..],
+            "error: invalid --edge-checks: got 5; allowed: 0 when no curves are traced\n",
+        ),
+    ] {
+        let out = std::env::temp_dir().join("never-written-edge-checks.json");
+        let out = out.to_str().unwrap();
+        let all = [&["atlas", "--resolution", "test", "--out", out][..], args].concat();
+        let (code, stdout, err) = cantilever(&all);
+        assert_eq!(code, 2, "{args:?}");
+        assert!(stdout.is_empty());
+        assert_eq!(err, message);
+        assert!(!std::path::Path::new(out).exists());
+    }
+}

@@ -55,7 +55,8 @@ def params(resolution: Literal["book", "test"] = "book", **changes: Any) -> Para
     field changed, e.g. ``params("book", k_points=512, omega_points=512)``. Fields: modes,
     k_over_k1_range, k_points, omega_range, omega_points, zeta1, gap, starts, transient,
     max_period, seed, check_modes, check_stride, check_starts, curves (a dict: max_curves,
-    max_seeds, max_points, round)."""
+    max_seeds, max_points, round, edge_sample: the edges the curves leave checked one by one,
+    0 to 4096)."""
     p: Params = json.loads(_core.atlas_params(resolution))
     unknown = set(changes) - set(p)
     if unknown:

@@ -26,14 +26,11 @@
 //! of the edge's midpoint. Conversely, every grid edge a curve crosses is checked: do its
 //! two cells differ in the orbit from rest, or at least in the set of stable (m, n) found?
 
-use super::cell::CellSearch;
+use super::across::{check_sample, continue_across, seed_failure, Continued, EdgeCheck};
 use super::{AtlasData, Cell};
-use crate::analysis::continuation::{
-    self, BifurcationKind, Family, Parameter, Settings as BranchSettings,
-};
+use crate::analysis::continuation::{BifurcationKind, Parameter};
 use crate::analysis::curves::{self, CodimTwo, CurveKind, CurveSettings, Family2, Meets};
 use crate::base::progress::Progress;
-use crate::engine::sim::Simulator;
 use crate::error::Error;
 use nalgebra::DVector;
 use rayon::prelude::*;
@@ -64,6 +61,10 @@ pub struct CurveSearch {
     pub max_points: usize,
     /// Seeds per round (traced in parallel, accepted in order).
     pub round: usize,
+    /// Edges no curve accounts for checked one by one at most, drawn at random
+    /// ([`super::across`]; 0: none).
+    #[serde(default)]
+    pub edge_sample: usize,
 }
 
 /// What separates two neighbouring cells.
@@ -161,6 +162,10 @@ pub struct BoundaryCurves {
     pub failed: Vec<FailedSeed>,
     /// Seeds whose curve was one already traced (another seed of the same round on it).
     pub duplicates: usize,
+    /// A random sample of the edges the curves leave, each checked by continuation across
+    /// it ([`super::across`]).
+    #[serde(default)]
+    pub checked: Vec<EdgeCheck>,
 }
 
 /// The cell (row, column).
@@ -218,15 +223,6 @@ fn curve_kind(kind: BifurcationKind) -> Option<CurveKind> {
     }
 }
 
-/// A failure that ends one seed, not the atlas (an interruption or a broken invariant
-/// ends it).
-fn seed_failure(e: Error) -> Result<String, Error> {
-    match e {
-        Error::Interrupted | Error::Invariant(_) => Err(e),
-        other => Ok(other.to_string()),
-    }
-}
-
 /// The curve through the first bifurcation of cell `from`'s orbit from rest met on the way
 /// (in ω) to cell `to`, or why there is none.
 fn trace_seed(
@@ -237,38 +233,15 @@ fn trace_seed(
     progress: &dyn Progress,
 ) -> Result<Result<BoundaryCurve, String>, Error> {
     let p = &d.params;
-    let modes = d.rows[from.0].modes;
     let k = d.rows[from.0].k_over_k1;
-    let (w0, w1) = (d.omega_over_w1[from.1], d.omega_over_w1[to.1]);
-    let forced = p.model(modes, k, w0)?;
-    let sim = Simulator::new(forced.model()?)?;
-    let orbit = match CellSearch::new(p, &sim, from).from_start(0) {
-        Ok(Some(o)) => o,
-        Ok(None) => return Ok(Err("rest reaches no stable orbit".into())),
-        Err(e) => return seed_failure(e).map(Err),
-    };
-    let label = (orbit.period_m, orbit.impacts_n);
-    let family = Family::forced(forced, Parameter::Frequency);
-    let range = (w0.min(w1), w0.max(w1));
-    let settings = BranchSettings {
-        // several points within the step, so the bifurcation is bracketed there
-        max_step: (range.1 / range.0).ln() / 4.0,
-        initial_step: (range.1 / range.0).ln() / 8.0,
-        max_points: 200,
-        ..BranchSettings::new(range)
-    };
-    let direction = if w1 > w0 { 1.0 } else { -1.0 };
-    let x = DVector::from_vec(orbit.state.clone());
-    let branch = match continuation::continue_branch(
-        &family,
-        &x,
-        w0,
-        orbit.period_m,
-        direction,
-        &settings,
-    ) {
-        Ok(b) => b,
-        Err(e) => return seed_failure(e).map(|w| Err(format!("continuation in ω: {w}"))),
+    let Continued {
+        forced,
+        label,
+        branch,
+        ..
+    } = match continue_across(d, (from, to), 200, false)? {
+        Ok(c) => c,
+        Err(why) => return Ok(Err(why)),
     };
     let Some((bif, kind)) = branch
         .bifurcations
@@ -405,6 +378,7 @@ pub fn trace(
         curves: Vec::new(),
         failed: Vec::new(),
         duplicates: 0,
+        checked: Vec::new(),
     };
     if search.max_curves == 0 {
         return Ok(found);
@@ -497,5 +471,7 @@ pub fn trace(
             }
         }
     }
+    drop(task);
+    found.checked = check_sample(d, &found, search.edge_sample, progress)?;
     Ok(found)
 }

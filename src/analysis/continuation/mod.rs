@@ -134,6 +134,10 @@ pub struct Settings {
     pub max_period: u64,
     /// Branches in total at most (period doublings add branches).
     pub max_branches: usize,
+    /// End the branch at the first bifurcation met (a check across a boundary needs only
+    /// that one).
+    #[serde(skip)]
+    pub stop_at_first: bool,
 }
 
 impl Settings {
@@ -147,6 +151,7 @@ impl Settings {
             max_points: 4000,
             max_period: 8,
             max_branches: 16,
+            stop_at_first: false,
         }
     }
 }
@@ -456,6 +461,11 @@ pub fn continue_branch(
                 };
                 points.push(point);
                 (z, t) = (zn, tn);
+                if settings.stop_at_first
+                    && !detect::bifurcations(&points[points.len() - 2..]).is_empty()
+                {
+                    break "stopped at its first bifurcation".to_string();
+                }
                 if its <= 3 {
                     h = (h * 1.4).min(settings.max_step);
                 } else if its >= 6 {

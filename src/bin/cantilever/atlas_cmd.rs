@@ -47,6 +47,12 @@ pub struct AtlasArgs {
     /// Traced by `atlas-merge` (or here when the shard is 0/1): a shard holds rows only.
     #[arg(long)]
     pub curves: Option<usize>,
+    /// Edges the curves leave checked one by one, drawn at random with the seed, 0 to 4096
+    /// (0: none; default 128, the book's): the orbit from rest on one side continued across
+    /// the edge to its first bifurcation. Done with the curves, and only when curves are
+    /// traced.
+    #[arg(long)]
+    pub edge_checks: Option<usize>,
 }
 
 /// `--resolution`.
@@ -72,6 +78,7 @@ pub fn params(a: &AtlasArgs) -> Result<AtlasParams, ParameterError> {
         modes: a.modes,
         modes_tolerance: a.modes_tolerance,
         curves: a.curves,
+        edge_checks: a.edge_checks,
     })
 }
 

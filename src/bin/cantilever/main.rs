@@ -226,14 +226,15 @@ enum Command {
     /// shard I/N of its rows, into a JSON file; `atlas-merge` combines the shards. The
     /// merged atlas is identical to the unsharded one (each row depends only on the
     /// parameters and its index), so the shards can run on any number of machines. The
-    /// book's 128 × 128 atlas takes about 90 s on two cores (its rows about 75 s, then its
-    /// boundary curves about 18 s).
+    /// book's 128 × 128 atlas takes about 100 s on two cores (its rows about 75 s, then its
+    /// boundary curves about 18 s and a check of 128 of the edges they leave about 9 s).
     Atlas {
         #[command(flatten)]
         args: atlas_cmd::AtlasArgs,
     },
     /// Merge the shards written by `cantilever atlas`, trace the atlas's boundary curves
-    /// (--curves of `atlas`; about 18 s for the book's), and write the atlas scene's output
+    /// (--curves of `atlas`) and check a sample of the edges they leave (about 27 s for the
+    /// book's), and write the atlas scene's output
     /// (plot.svg, table.md, decades.md, curves.md, data.json, key_numbers.json,
     /// verdict.json, …), as `cantilever scene atlas` writes it. Refuses shards of different
     /// parameters or builds, a row given twice, or a missing row.

@@ -55,6 +55,11 @@ const FIELDS: &[Field] = &[
     f("max_seeds", "at most", " seeds"),
     f("max_points", "points each way along a curve, at most", ""),
     f("round", "seeds traced together", ""),
+    f(
+        "edge_sample",
+        "edges left by the curves checked one by one",
+        "",
+    ),
     f("atlas", "the atlas", ""),
     f("cell", "the cell (k index, ω index)", ""),
     f("points", "grid points per side", ""),

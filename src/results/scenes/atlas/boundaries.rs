@@ -3,6 +3,7 @@
 
 use super::label;
 use crate::analysis::atlas::curves::{self, left, BoundaryCurves, Edge, EdgeClass, Label, Left};
+use crate::analysis::atlas::across::EdgeCheck;
 use crate::analysis::atlas::AtlasData;
 use crate::analysis::curves::CurveKind;
 use crate::base::report::{pretty, KeyNumbers, Uncertainty};
@@ -59,6 +60,107 @@ pub fn failure_kind(why: &str) -> &'static str {
     } else {
         "other"
     }
+}
+
+/// The Wilson score interval of a share `a` of `n` at 95 % confidence, in per cent.
+fn wilson(a: usize, n: usize) -> (f64, f64) {
+    if n == 0 {
+        return (0.0, 100.0);
+    }
+    let (z, n) = (1.96f64, n as f64);
+    let p = a as f64 / n;
+    let centre = (p + z * z / (2.0 * n)) / (1.0 + z * z / n);
+    let half = z * (p * (1.0 - p) / n + z * z / (4.0 * n * n)).sqrt() / (1.0 + z * z / n);
+    (100.0 * (centre - half).max(0.0), 100.0 * (centre + half).min(1.0))
+}
+
+/// "kind n, kind n" of the checked edges that meet a bifurcation, most frequent first.
+fn by_kind<'a>(checked: impl Iterator<Item = &'a EdgeCheck>) -> String {
+    let mut kinds: BTreeMap<&str, usize> = BTreeMap::new();
+    for x in checked {
+        if let Some((kind, _)) = &x.meets {
+            *kinds.entry(kind.as_str()).or_default() += 1;
+        }
+    }
+    let mut kinds: Vec<(&str, usize)> = kinds.into_iter().collect();
+    kinds.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(b.0)));
+    kinds
+        .iter()
+        .map(|(kind, n)| format!("{kind} {n}"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The key numbers of the edges checked across ([`crate::analysis::atlas::across`]).
+fn checked_numbers(k: &mut KeyNumbers, d: &AtlasData, c: &BoundaryCurves, edges: &[Edge]) {
+    let pool = edges
+        .iter()
+        .filter(|e| {
+            matches!(
+                left(d, c, e),
+                Some(Left::NotPeriodic | Left::SeedFailed | Left::NotSeeded)
+            )
+        })
+        .count();
+    let n = c.checked.len();
+    k.text(
+        "edges left, checked across",
+        format!(
+            "{n} of the {pool} edges left for the last three reasons, drawn at random with \
+             the atlas's seed"
+        ),
+    );
+    let located = c.checked.iter().filter(|x| x.meets.is_some()).count();
+    let (lo, hi) = wilson(located, n);
+    k.text(
+        "checked edges: a bifurcation located between the two cells",
+        format!(
+            "{located} of {n} ({:.0} %; of all {pool}, {lo:.0} to {hi:.0} % at 95 % confidence)",
+            100.0 * located as f64 / n.max(1) as f64
+        ),
+    );
+    k.text(
+        "checked edges: the bifurcation located, by kind",
+        by_kind(c.checked.iter()),
+    );
+    for reason in [Left::NotPeriodic, Left::SeedFailed, Left::NotSeeded] {
+        let of: Vec<&EdgeCheck> = c.checked.iter().filter(|x| x.left == reason.key()).collect();
+        let found = of.iter().filter(|x| x.meets.is_some()).count();
+        k.text(
+            format!("checked edges, {}: located", reason.key()),
+            if of.is_empty() {
+                "none checked".to_string()
+            } else {
+                format!(
+                    "{} of {} ({})",
+                    found,
+                    of.len(),
+                    if found == 0 { "none".to_string() } else { by_kind(of.into_iter()) }
+                )
+            },
+        );
+    }
+    let mut none: BTreeMap<String, usize> = BTreeMap::new();
+    for x in c.checked.iter().filter(|x| x.meets.is_none()) {
+        let why = x.why.as_deref().unwrap_or("");
+        let why = if why.contains("points reached") {
+            "the continuation did not reach the neighbour within its points"
+        } else {
+            why
+        };
+        *none.entry(why.to_string()).or_default() += 1;
+    }
+    k.text(
+        "checked edges: none located, why",
+        if none.is_empty() {
+            "none".to_string()
+        } else {
+            none.iter()
+                .map(|(why, n)| format!("{why} ({n})"))
+                .collect::<Vec<_>>()
+                .join("; ")
+        },
+    );
 }
 
 /// Digits a bracketed value supports: its leading digit and the first the half-width
@@ -158,6 +260,9 @@ pub fn key_numbers(k: &mut KeyNumbers, d: &AtlasData, c: &BoundaryCurves) {
                 .join(", ")
         },
     );
+    if c.search.edge_sample > 0 {
+        checked_numbers(k, d, c, &edges);
+    }
     let left = unaccounted(&edges);
     k.text(
         "edges no curve accounts for, by pair",
@@ -314,4 +419,23 @@ pub fn meetings_table(c: &BoundaryCurves) -> String {
         &["curve", "meets", "$\\omega/(\\beta_1^-)^2$", "$k/k_1$"],
         &rows,
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::wilson;
+
+    #[test]
+    fn the_wilson_interval_is_the_textbook_one() {
+        // Newcombe (1998), Statistics in Medicine 17, 857–872, table II, method 3 (the
+        // score interval without continuity correction), printed to 4 decimals: 0.005 %
+        // is their rounding, 0.01 % leaves room for z = 1.96 against their 1.959964
+        let close = |(a, b): (f64, f64), (x, y): (f64, f64)| {
+            assert!((a - x).abs() < 0.01 && (b - y).abs() < 0.01, "({a}, {b}) vs ({x}, {y})");
+        };
+        close(wilson(81, 263), (25.53, 36.62));
+        close(wilson(15, 148), (6.24, 16.05));
+        close(wilson(0, 20), (0.0, 16.11));
+        close(wilson(1, 29), (0.61, 17.18));
+    }
 }
