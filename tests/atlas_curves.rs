@@ -14,6 +14,7 @@ use impacting_cantilever::analysis::atlas::{
 use impacting_cantilever::analysis::continuation::{
     self, BifurcationKind, Family, Parameter, Settings,
 };
+use impacting_cantilever::analysis::curves::{self as curves2, CurveKind, CurveSettings, Family2};
 use impacting_cantilever::base::progress::Silent;
 use impacting_cantilever::engine::sim::Simulator;
 use nalgebra::DVector;
@@ -83,6 +84,7 @@ fn edges_and_crossings_on_a_hand_made_atlas() {
         seed: ((0, 1), (0, 2)),
         points: vec![(2.6, 1.0), (2.6, 10.0)],
         residuals: (0.0, 0.0),
+        test_residual_off_folds: 0.0,
         meetings: Vec::new(),
         ends: (
             "left the parameter rectangle".into(),
@@ -492,4 +494,69 @@ fn each_checked_edge_is_left_by_the_curves_and_meets_its_bifurcation_between_its
         );
     }
     assert!(located >= 3, "only {located} of 6 located: {:?}", c.checked);
+}
+
+/// The book atlas's grazing curve of the (1,1) orbit seeded at row 43, columns 59 to 60
+/// (N = 10): it stalls at both ends where another extremum of the tip comes as near the
+/// stop as the grazing one. Its points' test residuals were 1e-7 at a few points near the
+/// ends while the search for the extremum nearest the stop refined only the bracket whose
+/// samples were nearest the stop, which there can be the other extremum's.
+#[test]
+fn a_grazing_curve_where_two_extrema_near_the_stop_keeps_its_condition_to_round_off() {
+    let p = AtlasParams::book();
+    let (row, from, to) = (43, 59, 60);
+    let k = p.k_over_k1(row);
+    let (w0, w1) = (p.omega_over_w1(from), p.omega_over_w1(to));
+    let forced = p.model(10, k, w0).unwrap();
+    let sim = Simulator::new(forced.model().unwrap()).unwrap();
+    let o = CellSearch::new(&p, &sim, (row, from))
+        .from_start(0)
+        .unwrap()
+        .unwrap();
+    assert_eq!((o.period_m, o.impacts_n), (1, 1));
+    let settings = Settings {
+        max_step: (w1 / w0).ln() / 4.0,
+        initial_step: (w1 / w0).ln() / 8.0,
+        max_points: 200,
+        ..Settings::new((w0, w1))
+    };
+    let branch = continuation::continue_branch(
+        &Family::forced(forced, Parameter::Frequency),
+        &DVector::from_vec(o.state),
+        w0,
+        1,
+        1.0,
+        &settings,
+    )
+    .unwrap();
+    let bif = &branch.bifurcations[0];
+    assert_eq!(bif.kind, BifurcationKind::Grazing);
+    let family = Family2::forced(forced, Parameter::Frequency, Parameter::StopStiffness).unwrap();
+    let band = (p.k_over_k1(0), p.k_over_k1(88));
+    let curve = curves2::trace_curve(
+        &family,
+        CurveKind::Grazing,
+        &DVector::from_vec(branch.points[bif.index].state.clone()),
+        (bif.parameter, k),
+        1,
+        &CurveSettings {
+            max_points: 120,
+            max_step: 0.2,
+            ..CurveSettings::new(p.omega_range, band)
+        },
+        &Silent,
+    )
+    .unwrap();
+    assert!(curve.points.len() > 40, "{} points", curve.points.len());
+    // the orbit's shooting residual and the condition, as on the small atlas's curves
+    for q in &curve.points {
+        assert!(q.orbit_residual <= 1e-11, "{q:?}");
+        assert!(
+            q.test_residual <= 1e-9,
+            "at (ω, k) = ({}, {}): the tip's extremum is {:e} of A_free from the stop",
+            q.p,
+            q.q,
+            q.test_residual
+        );
+    }
 }

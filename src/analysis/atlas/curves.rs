@@ -46,6 +46,10 @@ pub type Label = Option<(u64, usize)>;
 /// A cell (row, column).
 type At = (usize, usize);
 
+/// A point is near a fold of its orbit when a Floquet multiplier lies within this of 1
+/// (see [`BoundaryCurve::test_residual_off_folds`]).
+pub const NEAR_FOLD: f64 = 1e-4;
+
 /// A band (its rows) and an unordered pair of labels.
 type BandPair = (Option<(usize, usize)>, (Label, Label));
 
@@ -125,6 +129,12 @@ pub struct BoundaryCurve {
     /// The largest orbit and test residuals over the points (relative; see
     /// [`crate::analysis::curves::CurvePoint`]).
     pub residuals: (f64, f64),
+    /// The largest test residual over its points with no Floquet multiplier within
+    /// [`NEAR_FOLD`] of 1. Near a fold of the orbit shooting at a fixed (ω, k) determines the
+    /// orbit only to its residual over |1 − μ|, and polishing a point moves it that far
+    /// along the fold's direction, so the condition there holds less well.
+    #[serde(default)]
+    pub test_residual_off_folds: f64,
     /// Its codimension-two points.
     pub meetings: Vec<CurveMeeting>,
     /// Why each end ends.
@@ -281,6 +291,16 @@ fn trace_seed(
     let residuals = curve.points.iter().fold((0.0f64, 0.0f64), |r, q| {
         (r.0.max(q.orbit_residual), r.1.max(q.test_residual))
     });
+    let test_residual_off_folds = curve
+        .points
+        .iter()
+        .filter(|q| {
+            q.multipliers
+                .iter()
+                .all(|z| (z[0] - 1.0).hypot(z[1]) > NEAR_FOLD)
+        })
+        .map(|q| q.test_residual)
+        .fold(0.0, f64::max);
     let meetings = curve
         .codim_two
         .iter()
@@ -307,6 +327,7 @@ fn trace_seed(
         seed: (from, to),
         points: curve.points.iter().map(|q| (q.p, q.q)).collect(),
         residuals,
+        test_residual_off_folds,
         meetings,
         ends: curve.ends,
     }))

@@ -90,21 +90,21 @@ impl Observer for ShapeObserver {
                 (0.0, d, v)
             }
         };
-        // the extremum bracket nearest the stop: (start, ḋ > 0 at start, distance)
-        let mut candidate: Option<(f64, bool, f64)> = None;
+        // every extremum's bracket: (start, ḋ > 0 at start). Each is refined: choosing one
+        // by its sampled distance from the stop picks the wrong one where two extrema come
+        // within the samples' error (½|d̈|h²) of the stop, as where the extremum nearest the
+        // stop changes from one to another
+        let mut brackets: Vec<(f64, bool)> = Vec::new();
         for j in 1..=samples {
             let s = j as f64 * h;
             let (d, v) = sig.tip(s);
             if (prev.2 > 0.0) != (v > 0.0) {
-                let dist = (d - self.gap).abs().min((prev.1 - self.gap).abs());
-                if candidate.is_none_or(|c| dist < c.2) {
-                    candidate = Some((prev.0.max(0.0), prev.2 > 0.0, dist));
-                }
+                brackets.push((prev.0.max(0.0), prev.2 > 0.0));
             }
             prev = (s, d, v);
         }
         self.last = Some((prev.1, prev.2));
-        if let Some((a, rising, _)) = candidate {
+        for (a, rising) in brackets {
             // bisection on ḋ over [a, a + h]: ḋ keeps the sign `rising` at lo
             let (mut lo, mut hi) = (a, (a + h).min(seg.end));
             for _ in 0..60 {

@@ -314,6 +314,31 @@ pub fn key_numbers(k: &mut KeyNumbers, d: &AtlasData, c: &BoundaryCurves) {
             ),
         );
     }
+    let away = c
+        .curves
+        .iter()
+        .enumerate()
+        .filter(|(_, cv)| cv.kind != CurveKind::Fold.to_string())
+        .max_by(|a, b| {
+            a.1.test_residual_off_folds
+                .total_cmp(&b.1.test_residual_off_folds)
+        });
+    if let Some((i, cv)) = away {
+        k.text(
+            format!(
+                "boundary curves: largest test residual off fold curves, at points with no \
+                 multiplier within {:.0e} of 1",
+                curves::NEAR_FOLD
+            ),
+            format!(
+                "{:.1e} (curve {}, {} of {})",
+                cv.test_residual_off_folds,
+                i + 1,
+                cv.kind,
+                label(Some(cv.orbit)),
+            ),
+        );
+    }
     let bracket = "interpolated along the curve between its two points that bracket it: half their distance";
     let mut n = 0;
     for (i, cv) in c.curves.iter().enumerate() {
