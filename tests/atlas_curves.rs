@@ -298,6 +298,38 @@ fn omega_at(curve: &BoundaryCurve, k: f64) -> Vec<f64> {
         .collect()
 }
 
+/// The orbit from rest of cell `at` of atlas `p` at (k, ω) with N modes, continued in
+/// `parameter` from p0 to p1 with the seeds' steps (at least four points between): its
+/// (m, n) and the branch.
+fn continued_across(
+    p: &AtlasParams,
+    modes: usize,
+    at: (usize, usize),
+    (k, omega): (f64, f64),
+    parameter: Parameter,
+    (p0, p1): (f64, f64),
+) -> ((u64, usize), continuation::Branch) {
+    let forced = p.model(modes, k, omega).unwrap();
+    let sim = Simulator::new(forced.model().unwrap()).unwrap();
+    let o = CellSearch::new(p, &sim, at).from_start(0).unwrap().unwrap();
+    let range = (p0.min(p1), p0.max(p1));
+    let settings = Settings {
+        max_step: (range.1 / range.0).ln() / 4.0,
+        initial_step: (range.1 / range.0).ln() / 8.0,
+        ..Settings::new(range)
+    };
+    let branch = continuation::continue_branch(
+        &Family::forced(forced, parameter),
+        &DVector::from_vec(o.state),
+        p0,
+        o.period_m,
+        if p1 > p0 { 1.0 } else { -1.0 },
+        &settings,
+    )
+    .unwrap();
+    ((o.period_m, o.impacts_n), branch)
+}
+
 #[test]
 fn every_curve_is_where_a_one_parameter_run_finds_its_bifurcation() {
     let p = small();
@@ -328,27 +360,8 @@ fn every_curve_is_where_a_one_parameter_run_finds_its_bifurcation() {
             };
             let k = d.rows[i].k_over_k1;
             let (w0, w1) = (d.omega_over_w1[from], d.omega_over_w1[to]);
-            let forced = p.model(2, k, w0).unwrap();
-            let sim = Simulator::new(forced.model().unwrap()).unwrap();
-            let o = CellSearch::new(&p, &sim, (i, from))
-                .from_start(0)
-                .unwrap()
-                .unwrap();
-            let range = (w0.min(w1), w0.max(w1));
-            let settings = Settings {
-                max_step: (range.1 / range.0).ln() / 4.0,
-                initial_step: (range.1 / range.0).ln() / 8.0,
-                ..Settings::new(range)
-            };
-            let branch = continuation::continue_branch(
-                &Family::forced(forced, Parameter::Frequency),
-                &DVector::from_vec(o.state),
-                w0,
-                o.period_m,
-                if w1 > w0 { 1.0 } else { -1.0 },
-                &settings,
-            )
-            .unwrap();
+            let (_, branch) =
+                continued_across(&p, 2, (i, from), (k, w0), Parameter::Frequency, (w0, w1));
             let kind = bifurcation_kind(&curve.kind);
             let found: Vec<f64> = branch
                 .bifurcations
@@ -461,29 +474,8 @@ fn each_checked_edge_is_left_by_the_curves_and_meets_its_bifurcation_between_its
             "{x:?}: {at} not between {p0} and {p1}"
         );
         // a run of the whole edge, not stopped at its first bifurcation, finds it there
-        let forced = p
-            .model(2, d.rows[from.0].k_over_k1, d.omega_over_w1[from.1])
-            .unwrap();
-        let sim = Simulator::new(forced.model().unwrap()).unwrap();
-        let o = CellSearch::new(&p, &sim, from)
-            .from_start(0)
-            .unwrap()
-            .unwrap();
-        let range = (p0.min(p1), p0.max(p1));
-        let settings = Settings {
-            max_step: (range.1 / range.0).ln() / 4.0,
-            initial_step: (range.1 / range.0).ln() / 8.0,
-            ..Settings::new(range)
-        };
-        let branch = continuation::continue_branch(
-            &Family::forced(forced, parameter),
-            &DVector::from_vec(o.state),
-            p0,
-            o.period_m,
-            if p1 > p0 { 1.0 } else { -1.0 },
-            &settings,
-        )
-        .unwrap();
+        let at_cell = (d.rows[from.0].k_over_k1, d.omega_over_w1[from.1]);
+        let (_, branch) = continued_across(&p, 2, from, at_cell, parameter, (p0, p1));
         let first = branch.bifurcations.first().unwrap();
         assert_eq!(first.kind.to_string(), *kind, "{x:?}");
         // the same run up to its first bifurcation: the same point, to round-off
@@ -507,30 +499,12 @@ fn a_grazing_curve_where_two_extrema_near_the_stop_keeps_its_condition_to_round_
     let (row, from, to) = (43, 59, 60);
     let k = p.k_over_k1(row);
     let (w0, w1) = (p.omega_over_w1(from), p.omega_over_w1(to));
-    let forced = p.model(10, k, w0).unwrap();
-    let sim = Simulator::new(forced.model().unwrap()).unwrap();
-    let o = CellSearch::new(&p, &sim, (row, from))
-        .from_start(0)
-        .unwrap()
-        .unwrap();
-    assert_eq!((o.period_m, o.impacts_n), (1, 1));
-    let settings = Settings {
-        max_step: (w1 / w0).ln() / 4.0,
-        initial_step: (w1 / w0).ln() / 8.0,
-        max_points: 200,
-        ..Settings::new((w0, w1))
-    };
-    let branch = continuation::continue_branch(
-        &Family::forced(forced, Parameter::Frequency),
-        &DVector::from_vec(o.state),
-        w0,
-        1,
-        1.0,
-        &settings,
-    )
-    .unwrap();
+    let (label, branch) =
+        continued_across(&p, 10, (row, from), (k, w0), Parameter::Frequency, (w0, w1));
+    assert_eq!(label, (1, 1));
     let bif = &branch.bifurcations[0];
     assert_eq!(bif.kind, BifurcationKind::Grazing);
+    let forced = p.model(10, k, w0).unwrap();
     let family = Family2::forced(forced, Parameter::Frequency, Parameter::StopStiffness).unwrap();
     let band = (p.k_over_k1(0), p.k_over_k1(88));
     let curve = curves2::trace_curve(
