@@ -76,15 +76,17 @@ fn edges_and_crossings_on_a_hand_made_atlas() {
         params,
         curves: None,
     };
-    // a straight curve at ω = 2.6 (grid column 1.6) over both rows
+    // a straight curve at ω = 2.6 (grid column 1.6) over both rows, with a point between
     let curve = BoundaryCurve {
         kind: "grazing".into(),
         modes: 2,
         orbit: (1, 1),
         seed: ((0, 1), (0, 2)),
-        points: vec![(2.6, 1.0), (2.6, 10.0)],
+        points: vec![(2.6, 1.0), (2.6, 3.0), (2.6, 10.0)],
         residuals: (0.0, 0.0),
         test_residual_off_folds: 0.0,
+        // its orbit unstable from its second point on
+        unstable: vec![false, true, true],
         meetings: Vec::new(),
         ends: (
             "left the parameter rectangle".into(),
@@ -133,6 +135,10 @@ fn edges_and_crossings_on_a_hand_made_atlas() {
     let cells: Vec<_> = crossed.iter().map(|x| x.cells).collect();
     assert_eq!(cells, vec![((0, 1), (0, 2)), ((1, 1), (1, 2))]);
     assert!(crossed.iter().all(|x| x.rest_differs && x.stable_differs));
+    // row 0 is crossed by the segment from its first point (stable) to its second, row 1
+    // by the one between two unstable points
+    let unstable: Vec<_> = crossed.iter().map(|x| x.orbit_unstable).collect();
+    assert_eq!(unstable, vec![Some(false), Some(true)]);
 }
 
 #[test]

@@ -46,6 +46,11 @@ pub type Label = Option<(u64, usize)>;
 /// A cell (row, column).
 type At = (usize, usize);
 
+/// A curve's orbit is unstable at a point when a multiplier lies outside the unit circle by
+/// more than this: the curve's own critical multipliers lie on it to their test residuals
+/// (at most ~1e-5, on fold curves).
+pub const UNSTABLE: f64 = 1e-3;
+
 /// A point is near a fold of its orbit when a Floquet multiplier lies within this of 1
 /// (see [`BoundaryCurve::test_residual_off_folds`]).
 pub const NEAR_FOLD: f64 = 1e-4;
@@ -135,6 +140,11 @@ pub struct BoundaryCurve {
     /// along the fold's direction, so the condition there holds less well.
     #[serde(default)]
     pub test_residual_off_folds: f64,
+    /// At each point, whether its orbit is unstable apart from the curve's own critical
+    /// multiplier (one lies outside the unit circle by more than [`UNSTABLE`]): a curve
+    /// of an unstable orbit changes no stable orbit the atlas can find.
+    #[serde(default)]
+    pub unstable: Vec<bool>,
     /// Its codimension-two points.
     pub meetings: Vec<CurveMeeting>,
     /// Why each end ends.
@@ -301,6 +311,15 @@ fn trace_seed(
         })
         .map(|q| q.test_residual)
         .fold(0.0, f64::max);
+    let unstable = curve
+        .points
+        .iter()
+        .map(|q| {
+            q.multipliers
+                .iter()
+                .any(|z| z[0].hypot(z[1]) > 1.0 + UNSTABLE)
+        })
+        .collect();
     let meetings = curve
         .codim_two
         .iter()
@@ -328,6 +347,7 @@ fn trace_seed(
         points: curve.points.iter().map(|q| (q.p, q.q)).collect(),
         residuals,
         test_residual_off_folds,
+        unstable,
         meetings,
         ends: curve.ends,
     }))

@@ -5,7 +5,10 @@
 use super::curves::{label, stable, BoundaryCurve, BoundaryCurves, Edge, EdgeClass, Label};
 use super::{AtlasData, AtlasParams};
 use serde::Serialize;
-use std::collections::BTreeSet;
+use std::collections::BTreeMap;
+
+/// A cell (row, column).
+type Cell = (usize, usize);
 
 /// Grid coordinates (column, row) of (ω, k): one unit is one grid step.
 pub(super) fn grid(p: &AtlasParams, (omega, k): (f64, f64)) -> (f64, f64) {
@@ -109,6 +112,9 @@ pub struct Crossing {
     pub rest_differs: bool,
     /// Their sets of stable (m, n) differ.
     pub stable_differs: bool,
+    /// The curve's orbit is unstable at both ends of the curve's segment that crosses the
+    /// edge (None when the curve carries no stability).
+    pub orbit_unstable: Option<bool>,
 }
 
 /// Every grid edge (between two cells of the atlas) each curve crosses, once per curve.
@@ -116,9 +122,10 @@ pub fn crossings(d: &AtlasData, c: &BoundaryCurves) -> Vec<Crossing> {
     let rows = d.rows.len();
     let mut out = Vec::new();
     for (n, curve) in c.curves.iter().enumerate() {
-        let mut seen = BTreeSet::new();
+        // each crossed edge with the index of the first segment that crosses it
+        let mut seen: BTreeMap<(Cell, Cell), usize> = BTreeMap::new();
         let pts: Vec<(f64, f64)> = curve.points.iter().map(|&q| grid(&d.params, q)).collect();
-        for w in pts.windows(2) {
+        for (segment, w) in pts.windows(2).enumerate() {
             let ((u0, v0), (u1, v1)) = (w[0], w[1]);
             // lines through cell centres: column j (u = j) and row i (v = i); crossing the
             // row line v = i between columns j and j + 1 crosses the edge along ω there
@@ -146,7 +153,7 @@ pub fn crossings(d: &AtlasData, c: &BoundaryCurves) -> Vec<Crossing> {
                             let inside =
                                 |(i, j): (usize, usize)| i < rows && j < d.rows[i].cells.len();
                             if inside(pair.0) && inside(pair.1) {
-                                seen.insert(pair);
+                                seen.entry(pair).or_insert(segment);
                             }
                         }
                     }
@@ -154,13 +161,17 @@ pub fn crossings(d: &AtlasData, c: &BoundaryCurves) -> Vec<Crossing> {
                 }
             }
         }
-        for (a, b) in seen {
+        for ((a, b), segment) in seen {
             let (ca, cb) = (&d.rows[a.0].cells[a.1], &d.rows[b.0].cells[b.1]);
+            let unstable = |i: usize| curve.unstable.get(i).copied();
             out.push(Crossing {
                 curve: n,
                 cells: (a, b),
                 rest_differs: label(ca) != label(cb),
                 stable_differs: stable(ca) != stable(cb) || label(ca) != label(cb),
+                orbit_unstable: unstable(segment)
+                    .zip(unstable(segment + 1))
+                    .map(|(x, y)| x && y),
             });
         }
     }

@@ -286,6 +286,14 @@ pub fn key_numbers(k: &mut KeyNumbers, d: &AtlasData, c: &BoundaryCurves) {
         "curve crossings: stable orbits found differ",
         share(crossed.iter().filter(|x| x.stable_differs).count(), crossed.len()),
     );
+    let same: Vec<_> = crossed.iter().filter(|x| !x.stable_differs).collect();
+    k.text(
+        "curve crossings where the stable orbits found do not differ: the curve's orbit unstable",
+        share(
+            same.iter().filter(|x| x.orbit_unstable == Some(true)).count(),
+            same.len(),
+        ),
+    );
     let (orbit, test) = c
         .curves
         .iter()
