@@ -155,6 +155,7 @@ fn check_edge(d: &AtlasData, e: &super::curves::Edge, reason: Left) -> Result<Ed
     out.orbit = Some(c.label);
     let b = &c.branch;
     // the branch's last point may lie beyond the neighbour (the step that left the range)
+    // (1e-12: the round-off of p = exp(ln p) at the range's ends, which a point there carries)
     let (lo, hi) = (c.range.0.min(c.range.1), c.range.0.max(c.range.1));
     let between = |p: f64| (lo * (1.0 - 1e-12)..=hi * (1.0 + 1e-12)).contains(&p);
     let last = b.points.last();
